@@ -1,0 +1,226 @@
+"""The two bodies of the model: a disk of radius 1 and a wall, as point networks.
+
+Every body has a row of surface points on its outline, roughened along the
+surface normal, and interior points that keep a clearance from that row.
+Springs are the edges of the Delaunay triangulation of the body (see
+``network``), except inside square lattices, whose springs come from the
+lattice itself.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.stats import qmc
+
+from .errors import InputError
+from .geometry import distance_to_polyline, inside_polygon
+from .network import triangulate_body
+
+# Roles of the points of a body. A FIXED point is held in place and is not part
+# of the contact surface; a wall held fixed everywhere keeps its SURFACE row.
+SURFACE, INTERIOR, FIXED = 0, 1, 2
+
+# Bulk number density of scipy's Poisson-disk sampler (fill_space) is
+# POISSON_FILL / radius**2; measured over seeds with scipy 1.17.
+POISSON_FILL = 0.61
+# Interior points keep this distance, in spacings, from the surface row: it
+# keeps every surface segment a Delaunay edge, and keeps the circumcircles of
+# the cells of a regular interior free of surface points.
+CLEARANCE = 0.75
+# Longest spring kept, in spacings (MODEL.md section 2 says "about twice").
+# Not exactly 2: a surface point roughened outwards makes a genuine triangle
+# whose base joins its two neighbours, a chord of about 2.06 spacings. The
+# outline test in ``network`` already removes every triangle across a dip.
+MAX_SPRING = 2.25
+
+LATTICES = ("random", "triangular", "square")
+
+
+@dataclass
+class Body:
+    """Points, their roles, and springs with relative stiffness."""
+
+    points: np.ndarray      # (n, 2) positions
+    role: np.ndarray        # (n,) SURFACE, INTERIOR or FIXED
+    springs: np.ndarray     # (m, 2) point indices
+    stiffness: np.ndarray   # (m,) spring constant in units of the body's ka
+    surface: np.ndarray     # indices of the contact surface row, in order
+    spacing: float          # nominal distance between neighbouring points
+    held: np.ndarray | None = None  # (n,) True for points held fixed; None: none are
+
+
+def triangular_spacing(density: float) -> float:
+    """Spacing of the triangular lattice with this number density."""
+    return float(np.sqrt(2.0 / (np.sqrt(3.0) * density)))
+
+
+def lattice_spacing(lattice: str, density: float) -> float:
+    """Nominal spacing of a lattice of the given number density.
+
+    For the random lattice it is the spacing of the triangular lattice with the
+    same density, which is close to its mean spring length.
+    """
+    if lattice == "square":
+        return float(1.0 / np.sqrt(density))
+    return triangular_spacing(density)
+
+
+def poisson_points(rng: np.random.Generator, spacing: float, lower, upper) -> np.ndarray:
+    """Points with a minimum distance, filling a box at the density of ``spacing``."""
+    density = 2.0 / (np.sqrt(3.0) * spacing**2)
+    radius = np.sqrt(POISSON_FILL / density)
+    sampler = qmc.PoissonDisk(d=2, radius=radius, seed=rng, l_bounds=lower, u_bounds=upper)
+    return sampler.fill_space()
+
+
+def regular_points(lattice: str, spacing: float, half_width: float) -> np.ndarray:
+    """A triangular or square lattice through the origin, covering a square."""
+    if lattice == "square":
+        basis = np.array([[1.0, 0.0], [0.0, 1.0]]) * spacing
+    else:
+        basis = np.array([[1.0, 0.0], [0.5, np.sqrt(3.0) / 2.0]]) * spacing
+    n = int(np.ceil(2.0 * half_width / (spacing * np.sqrt(3.0) / 2.0))) + 1
+    i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1), indexing="ij")
+    points = np.stack([i.ravel(), j.ravel()], axis=1) @ basis
+    return points[np.all(np.abs(points) <= half_width, axis=1)]
+
+
+def keep_clear(candidates: np.ndarray, outline: np.ndarray, clearance: float) -> np.ndarray:
+    """Candidates inside the closed outline and at least ``clearance`` from it."""
+    inside = inside_polygon(candidates, outline)
+    far = distance_to_polyline(candidates, outline, closed=True) >= clearance
+    return candidates[inside & far]
+
+
+def square_springs(points: np.ndarray, lattice: np.ndarray, spacing: float, k2_over_k1: float):
+    """Nearest and next-nearest springs of the square lattice points ``lattice``.
+
+    Both diagonals of every complete cell get k2; nearest neighbours get k1 = 1.
+    """
+    key = {tuple(np.rint(points[i] / spacing).astype(int)): i for i in lattice}
+    pairs, stiffness = [], []
+    for (ix, iy), i in key.items():
+        for dx, dy in ((1, 0), (0, 1)):
+            j = key.get((ix + dx, iy + dy))
+            if j is not None:
+                pairs.append((i, j))
+                stiffness.append(1.0)
+        corners = [key.get((ix + dx, iy + dy)) for dx, dy in ((1, 0), (0, 1), (1, 1))]
+        if None not in corners:
+            right, up, diagonal = corners
+            pairs += [(i, diagonal), (right, up)]
+            stiffness += [k2_over_k1, k2_over_k1]
+    return np.sort(np.array(pairs), axis=1), np.array(stiffness)
+
+
+def assemble(points, role, surface, outline, spacing, lattice="random", n_regular=0,
+             k2_over_k1=None) -> Body:
+    """Triangulate a body; for a square interior swap in the lattice's own springs.
+
+    ``n_regular`` is the number of trailing points that form a regular lattice.
+    """
+    springs = triangulate_body(points, outline, MAX_SPRING * spacing)
+    stiffness = np.ones(len(springs))
+    if lattice == "square":
+        regular = np.arange(len(points) - n_regular, len(points))
+        is_regular = np.zeros(len(points), bool)
+        is_regular[regular] = True
+        # The Delaunay triangulation of a square grid picks one diagonal per
+        # cell arbitrarily: drop all lattice-lattice edges and use the lattice's.
+        joining = ~(is_regular[springs[:, 0]] & is_regular[springs[:, 1]])
+        grid_pairs, grid_k = square_springs(points, regular, spacing, k2_over_k1)
+        band_pairs = springs[joining]
+        # Edges between two lattice points that the band needs (across notches of
+        # the lattice's outline) are kept as joining springs.
+        grid_set = {tuple(p) for p in grid_pairs.tolist()}
+        lattice_edges = springs[~joining]
+        extra = np.array([p for p in lattice_edges.tolist() if tuple(p) not in grid_set], int)
+        extra_k = np.array([k2_over_k1 if np.isclose(np.linalg.norm(points[a] - points[b]),
+                                                     np.sqrt(2) * spacing) else 1.0
+                            for a, b in extra]) if len(extra) else np.zeros(0)
+        springs = np.concatenate([band_pairs, grid_pairs, extra.reshape(-1, 2)])
+        stiffness = np.concatenate([np.ones(len(band_pairs)), grid_k, extra_k])
+        order = np.lexsort((springs[:, 1], springs[:, 0]))
+        springs, stiffness = springs[order], stiffness[order]
+    return Body(points, role, springs, stiffness, surface, spacing)
+
+
+def make_disk(rng: np.random.Generator, lattice: str = "random", n_points: int = 800,
+              roughness: float = 0.03, k2_over_k1: float = 3.0 / 7.0) -> Body:
+    """A disk of radius 1 centred at the origin.
+
+    The surface row is evenly spaced on the circle and pushed along the radius
+    by Gaussian roughness of standard deviation ``roughness``.
+    """
+    if lattice not in LATTICES:
+        raise InputError(f"lattice must be one of {', '.join(LATTICES)}; got {lattice!r}")
+    density = n_points / np.pi
+    spacing = lattice_spacing(lattice, density)
+    n_surface = int(round(2.0 * np.pi / spacing))
+    angle = 2.0 * np.pi * np.arange(n_surface) / n_surface
+    radius = 1.0 + roughness * rng.standard_normal(n_surface)
+    surface_points = radius[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=1)
+
+    if lattice == "random":
+        candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0])
+    else:
+        candidates = regular_points(lattice, spacing, 1.0)
+    interior = keep_clear(candidates, surface_points, CLEARANCE * spacing)
+
+    points = np.concatenate([surface_points, interior])
+    role = np.concatenate([np.full(n_surface, SURFACE), np.full(len(interior), INTERIOR)])
+    outline = np.arange(n_surface)
+    return assemble(points, role, outline, outline, spacing, lattice,
+                    n_regular=len(interior) if lattice != "random" else 0,
+                    k2_over_k1=k2_over_k1)
+
+
+def make_wall(rng: np.random.Generator, n_points: int, width: float = 8.0, height: float = 2.0,
+              roughness: float = 0.03, fixed: str = "sides") -> Body:
+    """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
+
+    The top face is the contact surface. The points on the vertical sides are
+    fixed; ``fixed`` = "sides+bottom" also fixes the bottom row and "all" every
+    point (a rigid wall).
+    """
+    density = n_points / (width * height)
+    spacing = triangular_spacing(density)
+    half = width / 2.0
+    n_top = int(round(width / spacing))
+    n_side = int(round(height / spacing))
+    top_x = np.linspace(-half, half, n_top + 1)
+    top_y = np.zeros(n_top + 1)
+    top_y[1:-1] = roughness * rng.standard_normal(n_top - 1)   # corners stay on the sides
+    top = np.stack([top_x, top_y], axis=1)
+    side_y = np.linspace(0.0, -height, n_side + 1)[1:]          # below the top corners
+    right = np.stack([np.full(n_side, half), side_y], axis=1)
+    left = np.stack([np.full(n_side, -half), side_y], axis=1)
+    bottom = np.stack([np.linspace(-half, half, n_top + 1)[1:-1], np.full(n_top - 1, -height)], axis=1)
+
+    rim = np.concatenate([top, right, left, bottom])
+    i_top = np.arange(n_top + 1)
+    i_right = n_top + 1 + np.arange(n_side)
+    i_left = i_right[-1] + 1 + np.arange(n_side)
+    i_bottom = i_left[-1] + 1 + np.arange(n_top - 1)
+
+    # Counter-clockwise: bottom-left corner, bottom row, right side up, top row
+    # leftwards, left side down.
+    outline = np.concatenate([i_left[-1:], i_bottom, i_right[::-1], i_top[::-1], i_left[:-1]])
+    candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
+    interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
+    points = np.concatenate([rim, interior])
+
+    role = np.full(len(points), INTERIOR)
+    role[i_top] = SURFACE
+    role[[i_top[0], i_top[-1]]] = FIXED
+    role[i_right] = FIXED
+    role[i_left] = FIXED
+    if fixed in ("sides+bottom", "all"):
+        role[i_bottom] = FIXED
+    body = assemble(points, role, i_top, outline, spacing)
+    body.held = role == FIXED
+    if fixed == "all":
+        body.held[:] = True
+    return body

@@ -1,0 +1,81 @@
+"""argparse types that reject bad values with a message naming the allowed range."""
+
+from __future__ import annotations
+
+import argparse
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """Errors as a single line and exit status 2 (argparse prints the usage too)."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def angle(text: str) -> float:
+    value = float(text)
+    if not 0.0 < value < 90.0:
+        raise argparse.ArgumentTypeError(f"must be in (0, 90) degrees, got {text}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    value = float(text)
+    if not value > 0.0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def count(minimum: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be an integer >= {minimum}, got {text}")
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be an integer >= {minimum}, got {text}")
+        return value
+    return parse
+
+
+def speed(text: str) -> float:
+    value = float(text)
+    if not 0.0 < value < 1.0:
+        raise argparse.ArgumentTypeError(f"must be in (0, 1) (units of c), got {text}")
+    return value
+
+
+def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
+    from .bodies import LATTICES
+    from .scene import WALL_FIXED_CHOICES
+
+    group = parser.add_argument_group("scene")
+    group.add_argument("--lattice", choices=LATTICES, default="random",
+                       help="disk lattice (default: random); the wall is always random")
+    group.add_argument("--seed", type=count(0), default=1, help="sample seed (default: 1)")
+    group.add_argument("--gamma", type=angle, default=45.0,
+                       help="incidence angle from the wall normal, degrees, in (0, 90) (default: 45)")
+    group.add_argument("--vn", type=speed, default=0.1,
+                       help="normal approach speed in units of c, in (0, 1) (default: 0.1)")
+    group.add_argument("--radius", type=positive_float, default=1.0,
+                       help="disk radius R, the unit of length (default: 1)")
+    group.add_argument("--n-disk", type=count(50), default=800,
+                       help="points in the disk, >= 50 (default: 800)")
+    group.add_argument("--n-wall", type=count(50), default=None,
+                       help="points in the wall, >= 50 (default: the disk's number density)")
+    group.add_argument("--roughness", type=float, default=0.03,
+                       help="std of the surface roughness in R, in [0, 0.1] (default: 0.03)")
+    group.add_argument("--k2-over-k1", type=positive_float, default=3.0 / 7.0,
+                       help="square lattice: diagonal over nearest spring constant (default: 3/7)")
+    group.add_argument("--wall-fixed", choices=WALL_FIXED_CHOICES, default="sides",
+                       help="which wall points are held fixed (default: sides)")
+
+
+def spec_from_args(args: argparse.Namespace):
+    from .scene import SceneSpec
+
+    return SceneSpec(lattice=args.lattice, seed=args.seed, gamma_deg=args.gamma, vn=args.vn,
+                     radius=args.radius, n_disk=args.n_disk, n_wall=args.n_wall,
+                     roughness=args.roughness, k2_over_k1=args.k2_over_k1,
+                     wall_fixed=args.wall_fixed)

@@ -1,0 +1,110 @@
+"""LAMMPS data files (atom_style bond, 2-D) and the scene's settings for the deck.
+
+Every spring gets its own bond type, so that each keeps its own natural
+length. Numbers are written in Python's shortest round-trip form, so LAMMPS
+reads back exactly the doubles the builder computed: every spring starts at
+exactly its natural length.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .contact_table import ensure_table, table_name
+from .scene import Scene, TYPE_NAMES
+
+# Decks run from the project's root and find the contact tables here.
+POTENTIALS = Path(__file__).resolve().parents[1] / "potentials"
+
+SPRING_STYLES = ("class2", "harmonic")
+
+
+def _rows(*columns) -> str:
+    """Lines of space-separated values; floats in shortest round-trip form."""
+    lists = [c.tolist() for c in columns]
+    return "".join(" ".join(map(repr, row)) + "\n" for row in zip(*lists))
+
+
+def bond_coeff_columns(scene: Scene, springs: str) -> list[np.ndarray]:
+    """Bond coefficients per spring: the quartic exactly through class2.
+
+    class2: E = K2 x^2 + K3 x^3 + K4 x^4, so K2 = ka/2, K3 = 0, K4 = kb/4 gives
+    V(x) = ka x^2 / 2 + kb x^4 / 4. harmonic: E = K x^2, K = ka/2 (no quartic).
+    """
+    r0 = scene.natural_lengths
+    if springs == "class2":
+        kb = scene.spec.kb_over_ka * scene.ka
+        return [r0, scene.ka / 2.0, np.zeros_like(r0), kb / 4.0]
+    if springs == "harmonic":
+        return [scene.ka / 2.0, r0]
+    raise ValueError(f"springs must be one of {', '.join(SPRING_STYLES)}; got {springs!r}")
+
+
+def data_file_text(scene: Scene, springs: str = "class2") -> str:
+    n = len(scene.positions)
+    m = len(scene.springs)
+    pad = 2.0 * scene.info["disk_spacing"]
+    lo = (scene.positions.min(axis=0) - pad).tolist()
+    hi = (scene.positions.max(axis=0) + pad).tolist()
+    spec = scene.spec
+    ids = np.arange(1, n + 1)
+    zeros = np.zeros(n)
+    bond_ids = np.arange(1, m + 1)
+    title = (f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
+             f"vn={spec.vn!r} springs={springs}")
+    parts = [
+        f"LAMMPS data file, {title}\n\n",
+        f"{n} atoms\n{m} bonds\n{len(TYPE_NAMES)} atom types\n{m} bond types\n\n",
+        f"{lo[0]!r} {hi[0]!r} xlo xhi\n{lo[1]!r} {hi[1]!r} ylo yhi\n-0.5 0.5 zlo zhi\n\n",
+        "Masses\n\n", "".join(f"{t} 1.0  # {name}\n" for t, name in TYPE_NAMES.items()),
+        f"\nBond Coeffs # {springs}\n\n", _rows(bond_ids, *bond_coeff_columns(scene, springs)),
+        "\nAtoms # bond\n\n",
+        _rows(ids, scene.molecule, scene.types, scene.positions[:, 0], scene.positions[:, 1],
+              zeros),
+        "\nVelocities\n\n",
+        _rows(ids, scene.velocities[:, 0], scene.velocities[:, 1], zeros),
+        "\nBonds\n\n", _rows(bond_ids, bond_ids, scene.springs[:, 0] + 1, scene.springs[:, 1] + 1),
+    ]
+    return "".join(parts)
+
+
+def settings_text(scene: Scene) -> str:
+    """A LAMMPS include file with the scene's settings, as index variables."""
+    info = scene.info
+    table = f"potentials/{table_name(info['contact']['a'], info['contact']['V0'])}"
+    skin = 0.5 * float(info["wall_spacing"])
+    cutoff = info["contact"]["cutoff"]
+    # Longest segment of the wall's surface, with room for stretching (segments
+    # under the disk were seen stretched by 25 percent).
+    reach = 2.0 * info["wall_longest_segment"]
+    # Ghost atoms must reach across the longest spring, for bonds split between
+    # ranks (1.5 times the longest natural length is LAMMPS's own estimate),
+    # and from a disk point to both ends of every wall segment it may touch.
+    comm = float(max(info["max_natural_length"] * 1.5, cutoff + 2.0 * reach) + skin)
+    return (
+        "# Scene settings written by the builder; -var on the command line overrides them.\n"
+        f"variable cutoff      index {cutoff!r}\n"
+        f"variable wall_reach  index {reach!r}\n"
+        f"variable contact_a   index {info['contact']['a']!r}\n"
+        f"variable contact_V0  index {info['contact']['V0']!r}\n"
+        f"variable skin        index {skin!r}\n"
+        f"variable comm_cutoff index {comm!r}\n"
+        f"variable wall_first  index {info['wall_row_tags'][0]}\n"
+        f"variable wall_last   index {info['wall_row_tags'][1]}\n"
+        f"variable table       index {table}\n"
+    )
+
+
+def write_scene(scene: Scene, folder: Path | str, springs: str = "class2") -> Path:
+    """Write scene.data, scene.lmp and scene.json into ``folder``."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    info = dict(scene.info, springs=springs)
+    ensure_table(POTENTIALS, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
+    (folder / "scene.data").write_text(data_file_text(scene, springs))
+    (folder / "scene.lmp").write_text(settings_text(scene))
+    (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")
+    return folder

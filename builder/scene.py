@@ -1,0 +1,251 @@
+"""A scene: a disk placed above a wall, moving towards it at an angle.
+
+Coordinates: the wall's top face is near y = 0 and its centre at x = 0; the
+wall normal is +y; the disk moves with velocity (v_n tan gamma, -v_n).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from . import bodies
+from .bodies import FIXED, INTERIOR, SURFACE, Body
+from .errors import (InputError, require_choice, require_nonnegative, require_positive)
+from .geometry import distance_to_polyline
+from .materials import spring_constant
+
+# LAMMPS atom types.
+DISK_SURFACE, DISK_INTERIOR, WALL_SURFACE, WALL_INTERIOR, WALL_FIXED = 1, 2, 3, 4, 5
+TYPE_NAMES = {DISK_SURFACE: "disk surface", DISK_INTERIOR: "disk interior",
+              WALL_SURFACE: "wall surface", WALL_INTERIOR: "wall interior",
+              WALL_FIXED: "wall fixed"}
+WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
+# Molecule IDs tell the bodies apart and which wall points are held fixed.
+DISK, WALL_FREE, WALL_HELD = 1, 2, 3
+
+
+@dataclass
+class SceneSpec:
+    """Everything that defines a scene; the seed fixes all its random draws."""
+
+    lattice: str = "random"
+    seed: int = 1
+    gamma_deg: float = 45.0       # incidence angle from the wall normal; 0 is head-on
+    vn: float = 0.1               # normal approach speed, in units of c
+    radius: float = 1.0           # R, the unit of length
+    n_disk: int = 800             # target number of points in the disk
+    n_wall: int | None = None     # default: the disk's number density
+    roughness: float = 0.03       # std of surface displacement, in R
+    k2_over_k1: float = 3.0 / 7.0  # square lattice only
+    kb_over_ka: float = 1e-3
+    wall_fixed: str = "sides"
+    wall_width: float = 8.0       # in R
+    wall_height: float = 2.0      # in R
+    wall_wave_speed: float = 1.0  # wall's c over the disk's c
+    contact_a: float = 300.0      # decay rate of the contact, a R
+    contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
+    start_gap: float = 0.1        # extra gap beyond the cutoff at start, in spacings
+
+    def __post_init__(self) -> None:
+        # Same spec, same files: 60 and 60.0 must not write different metadata.
+        for name, kind in (("seed", int), ("n_disk", int), ("n_wall", int)):
+            value = getattr(self, name)
+            if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+                setattr(self, name, kind(value))
+        for name in ("gamma_deg", "vn", "radius", "roughness", "k2_over_k1", "kb_over_ka",
+                     "wall_width", "wall_height", "wall_wave_speed", "contact_a",
+                     "contact_time_guess", "start_gap"):
+            value = getattr(self, name)
+            if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
+                setattr(self, name, float(value))
+
+    def validate(self) -> None:
+        require_choice("lattice", self.lattice, bodies.LATTICES)
+        if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
+            raise InputError(f"seed must be an integer >= 0, got {self.seed}")
+        if not 0.0 <= self.gamma_deg < 90.0:
+            raise InputError(f"gamma_deg must be in [0, 90) degrees, got {self.gamma_deg}")
+        if not 0.0 < self.vn < 1.0:
+            raise InputError(f"vn must be in (0, 1) (units of c), got {self.vn}")
+        require_positive("radius", self.radius)
+        if not self.n_disk >= 50:
+            raise InputError(f"n_disk must be an integer >= 50, got {self.n_disk}")
+        if self.n_wall is not None and not self.n_wall >= 50:
+            raise InputError(f"n_wall must be an integer >= 50, got {self.n_wall}")
+        if not 0.0 <= self.roughness <= 0.1:
+            raise InputError(f"roughness must be in [0, 0.1] (units of R), got {self.roughness}")
+        require_positive("k2_over_k1", self.k2_over_k1)
+        require_nonnegative("kb_over_ka", self.kb_over_ka)
+        require_choice("wall_fixed", self.wall_fixed, WALL_FIXED_CHOICES)
+        if not self.wall_width >= 4.0:
+            raise InputError(f"wall_width must be >= 4 (units of R), got {self.wall_width}")
+        if not self.wall_height >= 0.5:
+            raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
+        require_positive("wall_wave_speed", self.wall_wave_speed)
+        require_positive("contact_a", self.contact_a)
+        require_nonnegative("contact_time_guess", self.contact_time_guess)
+        require_positive("start_gap", self.start_gap)
+
+    @property
+    def wall_points(self) -> int:
+        if self.n_wall is not None:
+            return int(self.n_wall)
+        density = self.n_disk / np.pi
+        return int(round(density * self.wall_width * self.wall_height))
+
+
+@dataclass
+class Scene:
+    """Atoms and springs of a scene, in LAMMPS order, with its metadata."""
+
+    spec: SceneSpec
+    positions: np.ndarray     # (n, 2)
+    velocities: np.ndarray    # (n, 2)
+    types: np.ndarray         # (n,) LAMMPS atom types
+    molecule: np.ndarray      # (n,) DISK, WALL_FREE or WALL_HELD
+    springs: np.ndarray       # (m, 2) 0-based atom indices
+    ka: np.ndarray            # (m,) quadratic spring constants
+    info: dict = field(default_factory=dict)
+
+    @property
+    def natural_lengths(self) -> np.ndarray:
+        d = self.positions[self.springs[:, 0]] - self.positions[self.springs[:, 1]]
+        return np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+
+
+def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
+    """The disk and the wall of a sample, in units of R; independent of the angle.
+
+    Cached, because a sweep builds the same sample for every angle.
+    """
+    return _bodies(spec.lattice, spec.seed, spec.n_disk, spec.wall_points, spec.roughness,
+                   spec.k2_over_k1, spec.wall_fixed, spec.wall_width, spec.wall_height)
+
+
+@lru_cache(maxsize=8)
+def _bodies(lattice, seed, n_disk, n_wall, roughness, k2_over_k1, wall_fixed, width, height):
+    disk_seed, wall_seed = np.random.SeedSequence(seed).spawn(2)
+    disk = bodies.make_disk(np.random.default_rng(disk_seed), lattice, n_disk, roughness,
+                            k2_over_k1)
+    wall = bodies.make_wall(np.random.default_rng(wall_seed), n_wall, width, height,
+                            roughness, wall_fixed)
+    return disk, wall
+
+
+def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndarray,
+               target_gap: float, contact_x: float) -> np.ndarray:
+    """Centre of the disk such that it is ``target_gap`` from the wall's surface.
+
+    The disk starts high enough to clear every asperity, a little upstream so
+    that it first comes into range near ``contact_x``, and then moves along its
+    velocity until its closest point is ``target_gap`` from the wall's
+    polyline. Each step moves the disk by its current excess distance, which no
+    point can overshoot (sphere tracing).
+    """
+    direction = velocity / np.linalg.norm(velocity)
+    touch = -disk_surface[:, 1].min() + target_gap          # centre height at contact
+    safe = wall_row[:, 1].max() + touch + target_gap        # no point in range up here
+    centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
+    for _ in range(10000):
+        excess = distance_to_polyline(disk_surface + centre, wall_row).min() - target_gap
+        if excess < 1e-9 * target_gap:
+            return centre
+        centre = centre + excess * direction
+    raise RuntimeError("disk placement did not converge")
+
+
+def build_scene(spec: SceneSpec) -> Scene:
+    """Build, scale and place both bodies of a scene."""
+    spec.validate()
+    R = spec.radius
+    disk, wall = build_bodies(spec)
+
+    ka_disk, c_source = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
+    ka_wall, _ = spring_constant("random", wall.spacing * R, wave_speed=spec.wall_wave_speed)
+    cutoff = wall.spacing * R
+    gamma = np.radians(spec.gamma_deg)
+    velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
+
+    # Centre the sliding contact on the wall, but keep the disk clear of its sides.
+    reach = spec.wall_width / 2.0 - 1.5
+    contact_x = -np.clip(0.5 * velocity[0] * spec.contact_time_guess, 0.0, reach) * R
+    wall_row = wall.points[wall.surface] * R
+    centre = place_disk(disk.points[disk.surface] * R, wall_row, velocity,
+                        cutoff + spec.start_gap * cutoff, contact_x)
+
+    # Atom order: the wall's surface row first, left to right, so that
+    # consecutive tags are neighbours on the contact polyline; then the rest of
+    # the wall, the disk's surface row and the disk's interior.
+    row = wall.surface[wall.role[wall.surface] == SURFACE]
+    wall_rest = np.setdiff1d(np.arange(len(wall.points)), row)
+    disk_rest = np.setdiff1d(np.arange(len(disk.points)), disk.surface)
+    wall_order = np.concatenate([row, wall_rest])
+    disk_order = np.concatenate([disk.surface, disk_rest])
+    n_wall = len(wall_order)
+
+    wall_types = np.choose(wall.role, [WALL_SURFACE, WALL_INTERIOR, WALL_FIXED])[wall_order]
+    disk_types = np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order]
+    positions = np.concatenate([wall.points[wall_order] * R, disk.points[disk_order] * R + centre])
+    velocities = np.zeros_like(positions)
+    velocities[n_wall:] = velocity
+
+    def renumber(springs, order, offset):
+        new_index = np.empty(len(order), int)
+        new_index[order] = np.arange(len(order)) + offset
+        return np.sort(new_index[springs], axis=1)
+
+    springs = np.concatenate([renumber(wall.springs, wall_order, 0),
+                              renumber(disk.springs, disk_order, n_wall)])
+    ka = np.concatenate([ka_wall * wall.stiffness, ka_disk * disk.stiffness])
+    types = np.concatenate([wall_types, disk_types])
+    held = wall.held if wall.held is not None else np.zeros(len(wall.points), bool)
+    molecule = np.concatenate([np.where(held[wall_order], WALL_HELD, WALL_FREE),
+                               np.full(len(disk_order), DISK)])
+
+    scene = Scene(spec, positions, velocities, types, molecule, springs, ka)
+    scene.info = scene_info(scene, disk, wall, ka_disk, ka_wall, cutoff, c_source, velocity,
+                            len(row))
+    return scene
+
+
+def scene_info(scene: Scene, disk: Body, wall: Body, ka_disk: float, ka_wall: float,
+               cutoff: float, c_source: str, velocity: np.ndarray, n_row: int) -> dict:
+    """Derived quantities that a run and its analysis need."""
+    spec = scene.spec
+    R = spec.radius
+    in_disk = scene.molecule == DISK
+    disk_xy = scene.positions[in_disk]
+    com = disk_xy.mean(axis=0)                    # all points have mass 1
+    inertia = float(((disk_xy - com) ** 2).sum())
+    lengths = scene.natural_lengths
+    row = scene.positions[:n_row]
+    longest_segment = float(np.linalg.norm(np.diff(row, axis=0), axis=1).max())
+    a = spec.contact_a / R
+    return {
+        "spec": asdict(spec),
+        "units": {"length": "R", "velocity": "c", "time": "R/c", "mass": "m (one point)",
+                  "R": R, "c": 1.0, "m": 1.0, "c_source": c_source},
+        "n_atoms": int(len(scene.positions)),
+        "n_disk_points": int(in_disk.sum()),
+        "n_wall_points": int((~in_disk).sum()),
+        "n_springs": int(len(scene.springs)),
+        "atom_types": {str(k): v for k, v in TYPE_NAMES.items()},
+        "wall_row_tags": [1, n_row],
+        "wall_longest_segment": longest_segment,
+        "disk_spacing": float(disk.spacing * R),
+        "wall_spacing": float(wall.spacing * R),
+        "max_natural_length": float(lengths.max()),
+        "ka_disk": float(ka_disk),
+        "ka_wall": float(ka_wall),
+        "kb_over_ka": spec.kb_over_ka,
+        "contact": {"a": float(a), "V0": float(a * R / 2.0), "cutoff": float(cutoff)},
+        "disk_mass": float(in_disk.sum()),
+        "disk_inertia": inertia,
+        "disk_inertia_ratio": float(inertia / (in_disk.sum() * R * R)),
+        "initial_com": com.tolist(),
+        "initial_velocity": velocity.tolist(),
+        "cot_gamma": float(abs(velocity[1]) / velocity[0]) if velocity[0] > 0 else None,
+    }
