@@ -1,0 +1,342 @@
+/* ----------------------------------------------------------------------
+   Pair style polyline/exp: exponential repulsion of points from a polyline.
+   Part of the oblique-impact workflow; see potentials/README.md.
+
+   A point p of a "point" type is repelled by the closest feature (segment
+   interior or vertex) of a polyline whose vertices are the atoms with tags
+   first..last, in tag order; the polyline is the top of a body that lies
+   below it (towards -y):
+
+     E = v0 exp(-a l),  l = |p - q|,  q the closest point of the polyline
+
+   The reaction -F is shared by the segment's two ends with the lever rule,
+   weights (1-t) and t for q = w1 + t (w2 - w1); at a vertex it all goes to
+   the vertex. By the envelope theorem this is also the exact gradient of E,
+   which the "gradient" rule computes independently (for checks).
+------------------------------------------------------------------------- */
+
+#include "pair_polyline_exp.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+// LAMMPS versions from 2022 on request neighbor lists with add_request();
+// platform.h appeared with them.
+#if __has_include("platform.h")
+#define POLYLINE_EXP_ADD_REQUEST
+#else
+#include "neigh_request.h"
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+enum { LEVER, GRADIENT };
+
+/* ---------------------------------------------------------------------- */
+
+PairPolylineExp::PairPolylineExp(LAMMPS *lmp) : Pair(lmp), active(nullptr)
+{
+  single_enable = 0;
+  restartinfo = 0;
+  manybody_flag = 1;
+  no_virial_fdotr_compute = 1;
+
+  a = v0 = cut = reach = 0.0;
+  first = last = 0;
+  rule = LEVER;
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairPolylineExp::~PairPolylineExp()
+{
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(active);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPolylineExp::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  double **x = atom->x;
+  double **f = atom->f;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const double cut_contact_sq = cut * cut;
+  const double reach_sq = reach * reach;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+
+    // closest feature of the polyline within the cutoff, as the segment
+    // (w1,w2) and the parameter t of the foot of the perpendicular on it;
+    // and the parity of the crossings of the upward vertical ray from the
+    // point with the polyline, odd if the point is inside the body (which is
+    // below the polyline). A rough surface can fold under a grazing impact,
+    // so the side of the closest segment does not tell inside from outside.
+
+    double best = cut_contact_sq;
+    int w1 = -1, w2 = -1;
+    double t = 0.0;
+    int crossings = 0;
+    seen.clear();
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (!active[itype][type[j]]) continue;
+      if (tag[j] < first || tag[j] > last)
+        error->one(FLERR, "Pair polyline/exp: atom {} has a vertex type but is not on the polyline (tags {}..{})",
+                   tag[j], first, last);
+
+      const int ends[2][2] = {{vertex(tag[j] - 1, i), j}, {j, vertex(tag[j] + 1, i)}};
+      for (int s = 0; s < 2; s++) {
+        const int ja = ends[s][0], jb = ends[s][1];
+        if (ja < 0 || jb < 0) continue;
+        if (std::find(seen.begin(), seen.end(), tag[ja]) != seen.end()) continue;
+        seen.push_back(tag[ja]);
+
+        const double sx = x[jb][0] - x[ja][0];
+        const double sy = x[jb][1] - x[ja][1];
+        const double ss = sx * sx + sy * sy;
+        if (ss > reach_sq)
+          error->one(FLERR, "Pair polyline/exp: segment {}-{} is longer than reach {}; raise reach",
+                     tag[ja], tag[jb], reach);
+        const double ux = x[i][0] - x[ja][0];
+        const double uy = x[i][1] - x[ja][1];
+        double tt = (ux * sx + uy * sy) / ss;
+        if (tt < 0.0) tt = 0.0;
+        if (tt > 1.0) tt = 1.0;
+        const double dx = ux - tt * sx;
+        const double dy = uy - tt * sy;
+        const double dsq = dx * dx + dy * dy;
+        if (dsq < best) {
+          best = dsq;
+          w1 = ja;
+          w2 = jb;
+          t = tt;
+        }
+        // half-open in x, so that a ray through a vertex counts once; the
+        // crossing is above the point if (u x s) / s_x > 0
+        const bool straddles = (x[ja][0] <= x[i][0]) != (x[jb][0] <= x[i][0]);
+        if (straddles && (ux * sy - uy * sx) * sx > 0.0) crossings++;
+      }
+    }
+    if (w1 < 0) continue;
+
+    const double l = sqrt(best);
+    if (l == 0.0 || crossings % 2)
+      error->one(FLERR, "Pair polyline/exp: atom {} is inside the wall at step {} "
+                 "({} from the surface, near vertex {})",
+                 tag[i], update->ntimestep, l, tag[w1]);
+
+    const double evdwl = v0 * exp(-a * l);
+    const double fmag = a * evdwl;
+    const bool at_vertex = (t <= 0.0 || t >= 1.0);
+    const int v = (t <= 0.0) ? w1 : w2;
+
+    // p - q: the force on the point acts along it, away from the surface
+    double del[2];
+    if (at_vertex) {
+      del[0] = x[i][0] - x[v][0];
+      del[1] = x[i][1] - x[v][1];
+    } else {
+      del[0] = x[i][0] - (x[w1][0] + t * (x[w2][0] - x[w1][0]));
+      del[1] = x[i][1] - (x[w1][1] + t * (x[w2][1] - x[w1][1]));
+    }
+
+    if (at_vertex) {
+      const double fpair = fmag / l;
+      f[i][0] += del[0] * fpair;
+      f[i][1] += del[1] * fpair;
+      f[v][0] -= del[0] * fpair;
+      f[v][1] -= del[1] * fpair;
+      if (evflag) ev_tally(i, v, nlocal, 1, evdwl, 0.0, fpair, del[0], del[1], 0.0);
+      continue;
+    }
+
+    double fi[3], fw1[3], fw2[3];
+    fi[2] = fw1[2] = fw2[2] = 0.0;
+    if (rule == LEVER) {
+      fi[0] = fmag * del[0] / l;
+      fi[1] = fmag * del[1] / l;
+      fw1[0] = -(1.0 - t) * fi[0];
+      fw1[1] = -(1.0 - t) * fi[1];
+      fw2[0] = -t * fi[0];
+      fw2[1] = -t * fi[1];
+    } else {
+      // l = |d| with d = (s x u) / |s| the signed distance to the segment's
+      // line; derivatives of d with respect to u = p - w1 and s = w2 - w1
+      const double sx = x[w2][0] - x[w1][0];
+      const double sy = x[w2][1] - x[w1][1];
+      const double ux = x[i][0] - x[w1][0];
+      const double uy = x[i][1] - x[w1][1];
+      const double len = sqrt(sx * sx + sy * sy);
+      const double d = (sx * uy - sy * ux) / len;
+      const double sign = (d < 0.0) ? -1.0 : 1.0;
+      const double ddu[2] = {-sy / len, sx / len};
+      const double dds[2] = {uy / len - d * sx / (len * len), -ux / len - d * sy / (len * len)};
+      for (int k = 0; k < 2; k++) {
+        fi[k] = sign * fmag * ddu[k];
+        fw1[k] = sign * fmag * (-ddu[k] - dds[k]);
+        fw2[k] = sign * fmag * dds[k];
+      }
+    }
+    for (int k = 0; k < 2; k++) {
+      f[i][k] += fi[k];
+      f[w1][k] += fw1[k];
+      f[w2][k] += fw2[k];
+    }
+    if (evflag) {
+      double drji[3] = {x[w1][0] - x[i][0], x[w1][1] - x[i][1], 0.0};
+      double drki[3] = {x[w2][0] - x[i][0], x[w2][1] - x[i][1], 0.0};
+      ev_tally3(i, w1, w2, evdwl, 0.0, fw1, fw2, drji, drki);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   local index of the polyline vertex with tag t, the image closest to atom i;
+   -1 past either end of the polyline
+------------------------------------------------------------------------- */
+
+int PairPolylineExp::vertex(tagint t, int i)
+{
+  if (t < first || t > last) return -1;
+  const int m = atom->map(t);
+  if (m < 0)
+    error->one(FLERR, "Pair polyline/exp: vertex {} is not on this rank; "
+               "raise comm_modify cutoff to at least cutoff + 2 reach = {}", t, cut + 2.0 * reach);
+  return domain->closest_image(i, m);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPolylineExp::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(active, n, n, "pair:active");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) setflag[i][j] = active[i][j] = 0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_style polyline/exp a V0 cutoff first last [reach L] [rule lever|gradient]
+------------------------------------------------------------------------- */
+
+void PairPolylineExp::settings(int narg, char **arg)
+{
+  if (narg < 5)
+    error->all(FLERR, "Illegal pair_style polyline/exp command: expected "
+               "a V0 cutoff first last [reach L] [rule lever|gradient]");
+
+  a = utils::numeric(FLERR, arg[0], false, lmp);
+  v0 = utils::numeric(FLERR, arg[1], false, lmp);
+  cut = utils::numeric(FLERR, arg[2], false, lmp);
+  first = utils::tnumeric(FLERR, arg[3], false, lmp);
+  last = utils::tnumeric(FLERR, arg[4], false, lmp);
+  reach = 3.0 * cut;
+  rule = LEVER;
+
+  int iarg = 5;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "reach") == 0 && iarg + 1 < narg) {
+      reach = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    } else if (strcmp(arg[iarg], "rule") == 0 && iarg + 1 < narg) {
+      if (strcmp(arg[iarg + 1], "lever") == 0) rule = LEVER;
+      else if (strcmp(arg[iarg + 1], "gradient") == 0) rule = GRADIENT;
+      else error->all(FLERR, "Pair polyline/exp: rule must be lever or gradient, got {}", arg[iarg + 1]);
+    } else {
+      error->all(FLERR, "Pair polyline/exp: unknown keyword {} (allowed: reach L, rule lever|gradient)",
+                 arg[iarg]);
+    }
+    iarg += 2;
+  }
+
+  if (a <= 0.0) error->all(FLERR, "Pair polyline/exp: a must be > 0, got {}", a);
+  if (v0 <= 0.0) error->all(FLERR, "Pair polyline/exp: V0 must be > 0, got {}", v0);
+  if (cut <= 0.0) error->all(FLERR, "Pair polyline/exp: cutoff must be > 0, got {}", cut);
+  if (reach <= 0.0) error->all(FLERR, "Pair polyline/exp: reach must be > 0, got {}", reach);
+  if (first < 1 || last <= first)
+    error->all(FLERR, "Pair polyline/exp: need 1 <= first < last, got first {} last {}", first, last);
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J: points of types I are repelled by the polyline, whose
+   vertices have types J; every other type pair interacts with nothing
+------------------------------------------------------------------------- */
+
+void PairPolylineExp::coeff(int narg, char **arg)
+{
+  if (narg != 2)
+    error->all(FLERR, "Incorrect args for pair coefficients: pair_coeff I J "
+               "(I: types of the points, J: types of the polyline's vertices)");
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = jlo; j <= jhi; j++) active[i][j] = 1;
+
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) setflag[i][j] = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPolylineExp::init_style()
+{
+  if (domain->dimension != 2) error->all(FLERR, "Pair polyline/exp requires dimension 2");
+  if (!atom->tag_enable || atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Pair polyline/exp requires atom IDs and an atom map");
+  if (force->newton_pair == 0) error->all(FLERR, "Pair polyline/exp requires newton pair on");
+
+  // each point needs all its neighbours, owned or ghost
+#ifdef POLYLINE_EXP_ADD_REQUEST
+  neighbor->add_request(this, NeighConst::REQ_FULL);
+#else
+  const int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->full = 1;
+#endif
+}
+
+/* ----------------------------------------------------------------------
+   a point within the cutoff of a segment is within cutoff + reach/2 of one
+   of its ends, which is therefore in the point's neighbour list; the other
+   end is found through the atom map
+------------------------------------------------------------------------- */
+
+double PairPolylineExp::init_one(int i, int j)
+{
+  if (active[i][j] || active[j][i]) return cut + reach;
+  return 0.0;
+}
