@@ -1,0 +1,1 @@
+"""Reads the outputs of impact runs and measures e, beta and the contact."""

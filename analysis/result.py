@@ -1,0 +1,68 @@
+"""result.json of one impact: what was run and what came out of it."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+from .restitution import contact_window, energy_split, rebound_from_series, side_clearance
+from .series import read_energies, read_series
+
+
+def analyse_run(folder: Path | str) -> dict:
+    """The result of the run in ``folder`` (scene.json, run.json and the outputs)."""
+    folder = Path(folder)
+    scene = json.loads((folder / "scene.json").read_text())
+    run = json.loads((folder / "run.json").read_text())
+    spec = scene["spec"]
+    series = read_series(folder / "series.dat")
+    energies = read_energies(folder / "energy.dat")
+    radius = spec["radius"]
+    rebound = rebound_from_series(series, radius)
+    start, end = contact_window(series)
+    result = {
+        "lattice": spec["lattice"],
+        "seed": spec["seed"],
+        "gamma_deg": spec["gamma_deg"],
+        "cot_gamma": rebound.cot_gamma,
+        "vn": spec["vn"],
+        "dt": run["options"]["dt"],
+        "integrator": run["options"]["integrator"],
+        "contact": run["options"]["contact"],
+        "e": rebound.e,
+        "beta": rebound.beta,
+        "omega": rebound.omega,
+        "contact_time": end - start,
+        "steps": int(series["step"][-1]),
+        "wall_seconds": run["wall_seconds"],
+        "lammps_version": run["lammps_version"],
+        "rule": run["options"]["rule"],
+        "springs": run["options"]["springs"],
+        "route": run["options"]["route"],
+        "nprocs": run["options"]["nprocs"],
+        "git_revision": run["git_revision"],
+        "contact_start": start,
+        "contact_end": end,
+        "time_end": float(series["time"][-1]),
+        "side_clearance": side_clearance(series, spec["wall_width"], radius),
+        "disk_inertia_ratio": scene["disk_inertia_ratio"],
+        "n_disk_points": scene["n_disk_points"],
+        "n_wall_points": scene["n_wall_points"],
+        "c_source": scene["units"]["c_source"],
+        "vx_in": rebound.vx_in, "vy_in": rebound.vy_in,
+        "vx_out": rebound.vx_out, "vy_out": rebound.vy_out,
+    }
+    result.update(energy_split(series, energies, scene["disk_mass"]))
+    return result
+
+
+def write_json_atomically(data: dict, path: Path | str) -> None:
+    """Write JSON so that a reader sees either nothing or the whole file."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    with os.fdopen(fd, "w") as handle:
+        json.dump(data, handle, indent=1, sort_keys=True)
+        handle.write("\n")
+    os.replace(tmp, path)

