@@ -1,0 +1,73 @@
+# Oblique impacts of lattice disks with LAMMPS: set-up, demo, tests, benchmarks.
+# `make demo` and `make test` set everything up on a fresh Debian 12 machine.
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+
+# One interpreter for everything: Debian's python3, whose site-packages hold
+# Debian's `lammps` module, in a venv that sees them. Putting the venv first on
+# PATH also gives lmp's embedded Python (which takes its prefix from the first
+# python3 on PATH) the same packages.
+SYSTEM_PYTHON := /usr/bin/python3
+VENV   := $(CURDIR)/.venv
+PYTHON := $(VENV)/bin/python
+export PATH := $(VENV)/bin:$(PATH)
+# OpenMPI refuses root unless told; CI runs as root.
+export OMPI_ALLOW_RUN_AS_ROOT := 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+export OMPI_MCA_rmaps_base_oversubscribe := 1
+
+APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
+                python3-venv g++ make
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+STAMPS := .setup
+
+.PHONY: help setup demo test bench-impact clean
+
+help:
+	@echo "make demo          set up, then run a few oblique impacts and print e and beta"
+	@echo "make test          set up, then run the tests"
+	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
+	@echo "make setup         only install what is missing (Debian packages, Python venv)"
+
+setup: $(STAMPS)/python build/libpolyline_exp.so
+
+$(STAMPS)/debian:
+	@missing=$$(for p in $(APT_PACKAGES); do \
+	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	    echo "installing Debian packages:" $$missing; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+	@mkdir -p $(STAMPS) && touch $@
+
+$(STAMPS)/python: $(STAMPS)/debian requirements.txt
+	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
+	$(PYTHON) -m pip install --quiet --disable-pip-version-check -r requirements.txt
+	$(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest"
+	@touch $@
+
+# The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
+# some headers every style needs; they come from the matching source package.
+STYLE_SOURCES := potentials/pair_polyline_exp.cpp potentials/pair_polyline_exp.h
+CXXFLAGS_STYLE := -O2 -fPIC -shared -std=c++11 -Wall
+
+build/lammps-headers/neigh_request.h: | $(STAMPS)/debian
+	bash potentials/fetch_lammps_headers.sh build/lammps-headers build/apt
+
+build/libpolyline_exp.so: $(STYLE_SOURCES) potentials/polyline_exp_register.cpp build/lammps-headers/neigh_request.h
+	mpicxx $(CXXFLAGS_STYLE) -I/usr/include/lammps -Ibuild/lammps-headers \
+	    potentials/pair_polyline_exp.cpp potentials/polyline_exp_register.cpp -o $@ -llammps
+
+demo: setup
+	$(PYTHON) -m runner demo
+
+test: setup
+	$(PYTHON) -m pytest -q tests
+
+bench-impact: setup
+	$(PYTHON) bench/impact_speed.py
+
+clean:
+	rm -rf runs build
