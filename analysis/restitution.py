@@ -28,11 +28,16 @@ class Rebound:
 
 
 def rebound(v_in: np.ndarray, v_out: np.ndarray, omega_in: float, omega_out: float,
-            radius: float = 1.0) -> Rebound:
-    """e, beta and cot(gamma) from centre-of-mass velocities and angular velocities."""
+            radius: float = 1.0, tangential: bool | None = None) -> Rebound:
+    """e, beta and cot(gamma) from centre-of-mass velocities and angular velocities.
+
+    ``tangential`` says whether the impact is oblique; by default it is taken
+    as oblique unless the incoming slip is round-off (head-on: beta undefined).
+    """
     slip_in = v_in[0] + radius * omega_in
     slip_out = v_out[0] + radius * omega_out
-    tangential = slip_in != 0.0
+    if tangential is None:
+        tangential = abs(slip_in) > 1e-9 * abs(v_in[1])
     return Rebound(
         e=float(-v_out[1] / v_in[1]),
         beta=float(-slip_out / slip_in) if tangential else None,
@@ -43,7 +48,8 @@ def rebound(v_in: np.ndarray, v_out: np.ndarray, omega_in: float, omega_out: flo
     )
 
 
-def rebound_from_series(series: np.ndarray, radius: float = 1.0) -> Rebound:
+def rebound_from_series(series: np.ndarray, radius: float = 1.0,
+                        tangential: bool | None = None) -> Rebound:
     """Rebound from the first row (before contact) and the last (after it).
 
     After the contact the angular momentum is constant but the moment of
@@ -53,7 +59,7 @@ def rebound_from_series(series: np.ndarray, radius: float = 1.0) -> Rebound:
     first, last = series[0], series[-1]
     inertia = first["Izz"]
     return rebound(np.array([first["vx"], first["vy"]]), np.array([last["vx"], last["vy"]]),
-                   first["Lz"] / inertia, last["Lz"] / inertia, radius)
+                   first["Lz"] / inertia, last["Lz"] / inertia, radius, tangential)
 
 
 def contact_window(series: np.ndarray) -> tuple[float, float]:

@@ -20,7 +20,7 @@ def analyse_run(folder: Path | str) -> dict:
     series = read_series(folder / "series.dat")
     energies = read_energies(folder / "energy.dat")
     radius = spec["radius"]
-    rebound = rebound_from_series(series, radius)
+    rebound = rebound_from_series(series, radius, tangential=spec["gamma_deg"] > 0.0)
     start, end = contact_window(series)
     result = {
         "lattice": spec["lattice"],

@@ -124,8 +124,9 @@ void PairPolylineExp::compute(int eflag, int vflag)
         const double sy = x[jb][1] - x[ja][1];
         const double ss = sx * sx + sy * sy;
         if (ss > reach_sq)
-          error->one(FLERR, "Pair polyline/exp: segment {}-{} is longer than reach {}; raise reach",
-                     tag[ja], tag[jb], reach);
+          error->one(FLERR, "Pair polyline/exp: segment {}-{} is {} long, more than reach {}, "
+                     "at step {}: the run went unstable, or reach is too small",
+                     tag[ja], tag[jb], sqrt(ss), reach, update->ntimestep);
         const double ux = x[i][0] - x[ja][0];
         const double uy = x[i][1] - x[ja][1];
         double tt = (ux * sx + uy * sy) / ss;

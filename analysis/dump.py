@@ -1,0 +1,50 @@
+"""e and beta from a LAMMPS dump through MDAnalysis: the route for notebooks.
+
+The dump must hold x, y, z and vx, vy, vz (MDAnalysis wants all three even in
+2-D). MDAnalysis shifts positions by the box's lower corner, which changes
+from frame to frame in a shrink-wrapped box; only positions relative to the
+disk's centre of mass are used here, which the shift does not change.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .restitution import Rebound, rebound
+
+DISK_MOLECULE = 1
+
+
+def open_run(folder: Path | str):
+    """An MDAnalysis Universe of a run folder: scene.data and dump.lammpstrj."""
+    import MDAnalysis as mda
+
+    folder = Path(folder)
+    return mda.Universe(str(folder / "scene.data"), str(folder / "dump.lammpstrj"),
+                        atom_style="id resid type x y z", format="LAMMPSDUMP")
+
+
+def rigid_motion(atoms) -> tuple[np.ndarray, float, float]:
+    """Centre-of-mass velocity, angular momentum Lz and moment of inertia Izz."""
+    masses = atoms.masses.astype(float)
+    r = atoms.positions[:, :2].astype(float)
+    v = atoms.velocities[:, :2].astype(float)
+    mass = masses.sum()
+    r = r - masses @ r / mass
+    v_cm = masses @ v / mass
+    v = v - v_cm
+    lz = float(np.sum(masses * (r[:, 0] * v[:, 1] - r[:, 1] * v[:, 0])))
+    izz = float(np.sum(masses * (r * r).sum(axis=1)))
+    return v_cm, lz, izz
+
+
+def rebound_from_dump(universe, radius: float = 1.0) -> Rebound:
+    """Rebound from the first frame (before contact) and the last (after it)."""
+    disk = universe.select_atoms(f"resid {DISK_MOLECULE}")
+    universe.trajectory[0]
+    v_in, l_in, inertia = rigid_motion(disk)
+    universe.trajectory[-1]
+    v_out, l_out, _ = rigid_motion(disk)
+    return rebound(v_in, v_out, l_in / inertia, l_out / inertia, radius)

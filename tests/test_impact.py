@@ -1,0 +1,172 @@
+"""Impacts run by LAMMPS: invariants, physics limits, routes, and failures."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from analysis.dump import open_run, rebound_from_dump
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from runner.impact import run_impact, run_scene
+from runner.lammps_run import LammpsError
+from runner.options import RunOptions
+
+from conftest import ROOT, SMALL, new_lammps
+
+
+def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np.ndarray]:
+    """The disk alone, spinning and vibrating: (P_x, P_y, L_z, E) before and after."""
+    lmp = new_lammps()
+    for command in [
+        "units lj", "dimension 2", "boundary s s p", "atom_style bond",
+        "special_bonds lj/coul 1.0 1.0 1.0", "bond_style class2",
+        f"read_data {scene_dir}/scene.data",
+        "group wall molecule 2 3", "delete_atoms group wall bond yes",
+        "pair_style zero 0.1", "pair_coeff * *", "comm_modify cutoff 1.0",
+        "velocity all create 0.002 4928 loop geom",           # internal vibration
+        "variable vx0 atom vx", "variable vy0 atom vy",       # plus a rigid spin
+        "variable spin_x atom v_vx0-0.05*(y-xcm(all,y))",
+        "variable spin_y atom v_vy0+0.05*(x-xcm(all,x))",
+        "velocity all set v_spin_x v_spin_y NULL",
+        "fix move all nve", f"timestep {dt}",
+        "compute pe_bonds all pe bond", "compute ke all ke",
+        "variable p_x equal vcm(all,x)*mass(all)", "variable p_y equal vcm(all,y)*mass(all)",
+        "variable l_z equal angmom(all,z)", "variable etotal equal c_ke+c_pe_bonds",
+        "thermo_style custom step v_etotal", "run 0",
+    ]:
+        lmp.command(command)
+
+    def state():
+        return np.array([lmp.extract_variable(name, None, 0) for name in ("p_x", "p_y", "l_z", "etotal")])
+
+    before = state()
+    lmp.command(f"run {round(time / dt)}")
+    after = state()
+    lmp.close()
+    return before, after
+
+
+def test_free_flight_conserves_momentum_and_angular_momentum(small_scene_dir):
+    before, after = free_flight(small_scene_dir, 0.001)
+    scale = abs(before[2]) + 1.0
+    assert abs(before[2]) > 1.0                                      # it does spin
+    assert np.all(np.abs(after[:3] - before[:3]) < 1e-12 * scale)
+
+
+def test_free_flight_energy_error_is_small_and_second_order(small_scene_dir):
+    errors = [abs(after[3] - before[3]) / before[3]
+              for before, after in (free_flight(small_scene_dir, dt) for dt in (0.002, 0.001))]
+    assert errors[1] < 1e-4
+    assert 3.0 < errors[0] / errors[1] < 5.0                        # velocity Verlet: dt^2
+
+
+@pytest.fixture(scope="module")
+def head_on(tmp_path_factory):
+    """e of smooth triangular disks hitting a rigid wall head-on, by speed.
+
+    Smooth: at 0.03 c the indentation is comparable to a roughness of 0.03 R,
+    and a rough disk lands on asperities and spins (docs/validation.md).
+    """
+    results = {}
+    for vn in (0.03, 0.1, 0.2):
+        spec = SceneSpec(lattice="triangular", gamma_deg=0.0, vn=vn, roughness=0.0, wall_fixed="all")
+        results[vn] = run_impact(spec, tmp_path_factory.mktemp(f"head_on_{vn}"), RunOptions(tmax=300.0))
+    return results
+
+
+def test_slow_head_on_impact_on_a_rigid_wall_is_nearly_elastic(head_on):
+    assert head_on[0.03]["e"] > 0.98
+    assert head_on[0.03]["beta"] is None                             # no tangential motion
+    assert abs(head_on[0.03]["energy_drift"]) < 1e-6
+
+
+def test_restitution_falls_as_the_speed_rises(head_on):
+    assert head_on[0.03]["e"] > head_on[0.1]["e"] > head_on[0.2]["e"]
+
+
+@pytest.fixture(scope="module")
+def oblique(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("oblique")
+    result = run_impact(SceneSpec(gamma_deg=40.0, **SMALL), folder, RunOptions(dump_every=100))
+    return folder, result
+
+
+def test_result_json(oblique):
+    folder, result = oblique
+    saved = json.loads((folder / "result.json").read_text())
+    assert saved == result
+    for key in ("lattice", "seed", "gamma_deg", "cot_gamma", "vn", "dt", "integrator", "contact",
+                "e", "beta", "omega", "contact_time", "steps", "wall_seconds", "lammps_version"):
+        assert key in saved
+    assert saved["lammps_version"].startswith("29 Sep 2021")
+    assert saved["cot_gamma"] == pytest.approx(1.0 / np.tan(np.radians(40.0)))
+    assert 0.0 < saved["e"] < 1.0 and -1.0 < saved["beta"] < 1.0
+    # energy: what the disk lost went into vibrations, up to the integration error
+    assert abs(saved["energy_drift"]) < 1e-3
+
+
+def test_series_and_dump_agree(oblique):
+    folder, result = oblique
+    from_dump = rebound_from_dump(open_run(folder))
+    # the dump route reads float32 velocities
+    assert from_dump.e == pytest.approx(result["e"], rel=1e-6)
+    assert from_dump.beta == pytest.approx(result["beta"], rel=1e-6)
+    assert from_dump.omega == pytest.approx(result["omega"], rel=1e-6)
+
+
+def test_lmp_and_python_routes_agree(tmp_path, small_scene):
+    results = {}
+    for route in ("lmp", "python"):
+        folder = write_scene(small_scene, tmp_path / route)
+        results[route] = run_scene(folder, RunOptions(route=route))
+    for key in ("e", "beta", "omega", "contact_time", "steps"):
+        assert results["lmp"][key] == results["python"][key]
+
+
+def runner_cli(*args, cwd=ROOT):
+    return subprocess.run([sys.executable, "-m", "runner", *args], cwd=cwd, capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["impact", "--radius", "-1"], "argument --radius: must be > 0"),
+    (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer >= 50"),
+    (["impact", "--gamma", "90"], "argument --gamma: must be in (0, 90) degrees"),
+    (["impact", "--lattice", "hexagonal"], "argument --lattice: invalid choice"),
+    (["impact", "--dt", "-0.001"], "argument --dt: must be > 0"),
+])
+def test_runner_cli_rejects_bad_input(tmp_path, args, words):
+    out = tmp_path / "run"
+    proc = runner_cli(*args, "--out", str(out))
+    assert proc.returncode == 2
+    assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_missing_data_file(tmp_path):
+    proc = runner_cli("run", str(tmp_path / "nowhere"))
+    assert proc.returncode == 2
+    assert "scene: no scene.data" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "nowhere").exists()
+
+
+def test_unstable_run_stops_without_a_result(small_scene_dir, tmp_path):
+    folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path / "unstable")
+    with pytest.raises(LammpsError, match="unstable|inside the wall"):
+        run_scene(folder, RunOptions(dt=0.1))
+    assert not (folder / "result.json").exists()
+    proc = runner_cli("run", str(folder), "--dt", "0.1")
+    assert proc.returncode == 1 and "error:" in proc.stderr
+    assert not (folder / "result.json").exists()
+
+
+def test_pair_variant_lets_the_disk_into_the_wall(tmp_path):
+    """At 0.1 c disk points slip between the wall's surface points (docs/contact.md)."""
+    folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path / "pair")
+    with pytest.raises(LammpsError, match="inside the wall"):
+        run_scene(folder, RunOptions(contact="pair"))
+    assert not (folder / "result.json").exists()
