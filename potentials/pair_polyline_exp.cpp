@@ -338,6 +338,6 @@ void PairPolylineExp::init_style()
 
 double PairPolylineExp::init_one(int i, int j)
 {
-  if (active[i][j] || active[j][i]) return cut + reach;
+  if (active[i][j] || active[j][i]) return cut + 0.5 * reach;
   return 0.0;
 }

@@ -40,6 +40,7 @@ def command_line(variables: dict[str, str], log: Path) -> list[str]:
 
 
 def mpi_launcher(nprocs: int) -> list[str]:
+    """mpirun for ``nprocs`` ranks; nothing for one."""
     if nprocs == 1:
         return []
     mpirun = shutil.which("mpirun")
@@ -48,11 +49,20 @@ def mpi_launcher(nprocs: int) -> list[str]:
     return [mpirun, "-np", str(nprocs)]
 
 
+def mpi_environment() -> dict[str, str]:
+    """The environment for mpirun; Open MPI refuses root (CI) unless told."""
+    env = dict(os.environ)
+    if os.geteuid() == 0:
+        env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    return env
+
+
 def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
     """Run the deck with lmp; returns the wall time in seconds."""
     start = time.perf_counter()
     proc = subprocess.run(mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
-                          cwd=ROOT, capture_output=True, text=True)
+                          cwd=ROOT, capture_output=True, text=True, env=mpi_environment())
     elapsed = time.perf_counter() - start
     if proc.returncode != 0:
         tail = (proc.stderr.strip() or proc.stdout.strip()).splitlines()[-1:] or ["no output"]

@@ -1,0 +1,56 @@
+"""Steps per second of the default scene: class2 vs harmonic springs, 1 vs 2 ranks.
+
+    make bench-impact        (or: python bench/impact_speed.py --repeats 3)
+
+Each configuration runs the whole default impact (random lattice, seed 1,
+45 degrees, segment contact, dt 1e-3) several times; the table gives medians
+of the steps per second inside LAMMPS's run loops and of the wall time of the
+whole impact (start of lmp to result).
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+from pathlib import Path
+
+from common import loop_seconds, markdown_table, median, write_report
+
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from runner.impact import run_scene
+from runner.options import RunOptions
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+
+    scene = build_scene(SceneSpec(gamma_deg=45.0))
+    atoms = scene.info["n_atoms"]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for springs in ("class2", "harmonic"):
+            folder = write_scene(scene, Path(tmp) / springs, springs)
+            for nprocs in (1, 2):
+                rates, walls, steps = [], [], 0
+                for _ in range(args.repeats):
+                    result = run_scene(folder, RunOptions(springs=springs, nprocs=nprocs))
+                    seconds, steps = loop_seconds(folder / "log.lammps")
+                    rates.append(steps / seconds)
+                    walls.append(result["wall_seconds"])
+                rate = median(rates)
+                rows.append([springs, str(nprocs), str(steps), f"{rate:,.0f}",
+                             f"{rate * atoms / 1e6:.1f}", f"{median(walls):.2f}"])
+                print(" ".join(rows[-1]), flush=True)
+    body = (f"Default scene: {atoms} atoms, {scene.info['n_springs']} springs, "
+            f"medians of {args.repeats} runs.\n\n"
+            + markdown_table(["springs", "ranks", "steps", "steps/s", "Matom-steps/s",
+                              "wall s per impact"], rows))
+    print(body)
+    print(f"wrote {write_report('impact_speed', 'Impact speed', 'make bench-impact', body)}")
+
+
+if __name__ == "__main__":
+    main()

