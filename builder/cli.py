@@ -66,15 +66,21 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
                        help="points in the wall, >= 50 (default: the disk's number density)")
     group.add_argument("--roughness", type=float, default=0.03,
                        help="std of the surface roughness in R, in [0, 0.1] (default: 0.03)")
-    group.add_argument("--k2-over-k1", type=positive_float, default=3.0 / 7.0,
-                       help="square lattice: diagonal over nearest spring constant (default: 3/7)")
+    square = group.add_mutually_exclusive_group()
+    square.add_argument("--k2-over-k1", type=positive_float, default=3.0 / 7.0,
+                        help="square lattice: diagonal over nearest spring constant (default: 3/7)")
+    square.add_argument("--nu", type=float, default=None,
+                        help="square lattice: k2/k1 that gives this Poisson ratio along the axes")
     group.add_argument("--wall-fixed", choices=WALL_FIXED_CHOICES, default="sides",
                        help="which wall points are held fixed (default: sides)")
 
 
 def spec_from_args(args: argparse.Namespace):
+    from .materials import square_ratio_for_poisson
     from .scene import SceneSpec
 
+    if args.nu is not None:
+        args.k2_over_k1 = square_ratio_for_poisson(args.nu)
     return SceneSpec(lattice=args.lattice, seed=args.seed, gamma_deg=args.gamma, vn=args.vn,
                      radius=args.radius, n_disk=args.n_disk, n_wall=args.n_wall,
                      roughness=args.roughness, k2_over_k1=args.k2_over_k1,

@@ -28,47 +28,56 @@ def _rows(*columns) -> str:
     return "".join(" ".join(map(repr, row)) + "\n" for row in zip(*lists))
 
 
-def bond_coeff_columns(scene: Scene, springs: str) -> list[np.ndarray]:
+def bond_coeff_columns(r0: np.ndarray, ka: np.ndarray, kb_over_ka: float,
+                       springs: str) -> list[np.ndarray]:
     """Bond coefficients per spring: the quartic exactly through class2.
 
     class2: E = K2 x^2 + K3 x^3 + K4 x^4, so K2 = ka/2, K3 = 0, K4 = kb/4 gives
     V(x) = ka x^2 / 2 + kb x^4 / 4. harmonic: E = K x^2, K = ka/2 (no quartic).
     """
-    r0 = scene.natural_lengths
     if springs == "class2":
-        kb = scene.spec.kb_over_ka * scene.ka
-        return [r0, scene.ka / 2.0, np.zeros_like(r0), kb / 4.0]
+        return [r0, ka / 2.0, np.zeros_like(r0), kb_over_ka * ka / 4.0]
     if springs == "harmonic":
-        return [scene.ka / 2.0, r0]
+        return [ka / 2.0, r0]
     raise ValueError(f"springs must be one of {', '.join(SPRING_STYLES)}; got {springs!r}")
 
 
-def data_file_text(scene: Scene, springs: str = "class2") -> str:
-    n = len(scene.positions)
-    m = len(scene.springs)
-    pad = 2.0 * scene.info["disk_spacing"]
-    lo = (scene.positions.min(axis=0) - pad).tolist()
-    hi = (scene.positions.max(axis=0) + pad).tolist()
-    spec = scene.spec
+def network_data_text(title: str, positions: np.ndarray, velocities: np.ndarray,
+                      types: np.ndarray, type_names: dict[int, str], molecule: np.ndarray,
+                      pairs: np.ndarray, ka: np.ndarray, kb_over_ka: float, springs: str,
+                      pad: float) -> str:
+    """A 2-D data file of point masses 1 and springs, one bond type per spring."""
+    n, m = len(positions), len(pairs)
+    lo = (positions.min(axis=0) - pad).tolist()
+    hi = (positions.max(axis=0) + pad).tolist()
+    d = positions[pairs[:, 0]] - positions[pairs[:, 1]]
+    r0 = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
     ids = np.arange(1, n + 1)
     zeros = np.zeros(n)
     bond_ids = np.arange(1, m + 1)
-    title = (f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
-             f"vn={spec.vn!r} springs={springs}")
     parts = [
         f"LAMMPS data file, {title}\n\n",
-        f"{n} atoms\n{m} bonds\n{len(TYPE_NAMES)} atom types\n{m} bond types\n\n",
+        f"{n} atoms\n{m} bonds\n{len(type_names)} atom types\n{m} bond types\n\n",
         f"{lo[0]!r} {hi[0]!r} xlo xhi\n{lo[1]!r} {hi[1]!r} ylo yhi\n-0.5 0.5 zlo zhi\n\n",
-        "Masses\n\n", "".join(f"{t} 1.0  # {name}\n" for t, name in TYPE_NAMES.items()),
-        f"\nBond Coeffs # {springs}\n\n", _rows(bond_ids, *bond_coeff_columns(scene, springs)),
+        "Masses\n\n", "".join(f"{t} 1.0  # {name}\n" for t, name in type_names.items()),
+        f"\nBond Coeffs # {springs}\n\n",
+        _rows(bond_ids, *bond_coeff_columns(r0, ka, kb_over_ka, springs)),
         "\nAtoms # bond\n\n",
-        _rows(ids, scene.molecule, scene.types, scene.positions[:, 0], scene.positions[:, 1],
-              zeros),
+        _rows(ids, molecule, types, positions[:, 0], positions[:, 1], zeros),
         "\nVelocities\n\n",
-        _rows(ids, scene.velocities[:, 0], scene.velocities[:, 1], zeros),
-        "\nBonds\n\n", _rows(bond_ids, bond_ids, scene.springs[:, 0] + 1, scene.springs[:, 1] + 1),
+        _rows(ids, velocities[:, 0], velocities[:, 1], zeros),
+        "\nBonds\n\n", _rows(bond_ids, bond_ids, pairs[:, 0] + 1, pairs[:, 1] + 1),
     ]
     return "".join(parts)
+
+
+def data_file_text(scene: Scene, springs: str = "class2") -> str:
+    spec = scene.spec
+    title = (f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
+             f"vn={spec.vn!r} springs={springs}")
+    return network_data_text(title, scene.positions, scene.velocities, scene.types, TYPE_NAMES,
+                             scene.molecule, scene.springs, scene.ka, spec.kb_over_ka, springs,
+                             pad=2.0 * scene.info["disk_spacing"])
 
 
 def settings_text(scene: Scene) -> str:

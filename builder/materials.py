@@ -1,32 +1,79 @@
-"""Elastic wave speed of each lattice, which sets the units of a scene.
+"""Elastic constants of the lattices: the calibrated table, and the closed forms.
 
-Every spring constant is chosen so that the disk's wave speed c = sqrt(E / rho)
-is 1 with point mass m = 1 and radius R = 1. That needs c in terms of the
-spring constant ka and the spacing d: c^2 = factor * ka * d^2 / m.
-
-Until the calibration measures E for each lattice, the factors are estimates:
-exact for the triangular lattice (E = 2 ka / sqrt(3)), the continuum value
-along the axes for the square lattice (E = k1 (k1 + 2 k2) / (k1 + k2)), and the
-triangular value at the same number density for the random lattice.
+Every scene sets its spring constants so that the disk's wave speed
+c = sqrt(E / rho) is 1 with m = 1 and R = 1. That needs the measured factor in
+c^2 = factor * ka * d^2 / m, from calibration/materials.json (`make
+calibrate`). A lattice that is not in the table is refused.
 """
 
 from __future__ import annotations
 
-SOURCE_ESTIMATE = "estimate: triangular-lattice formula (uncalibrated)"
+import json
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .errors import InputError
+
+TABLE = Path(__file__).resolve().parents[1] / "calibration" / "materials.json"
 
 
-def wave_speed_factor(lattice: str, k2_over_k1: float = 0.0) -> tuple[float, str]:
-    """The factor in c^2 = factor * ka * d^2 / m, and where it comes from."""
-    if lattice == "triangular":
-        return 1.0, "exact: triangular lattice, c^2 = k d^2 / m"
-    if lattice == "square":
-        r = k2_over_k1
-        return (1.0 + 2.0 * r) / (1.0 + r), "estimate: square lattice along its axes (uncalibrated)"
-    return 1.0, SOURCE_ESTIMATE
+def square_poisson_ratio(k2_over_k1: float, angle_deg: float = 0.0) -> float:
+    """Poisson ratio of the square lattice pulled along (cos a, sin a) (MODEL.md)."""
+    k1, k2 = 1.0, k2_over_k1
+    a = np.radians(angle_deg)
+    s = (k1 * k1 - 4.0 * k2 * k2) * (np.cos(a) * np.sin(a)) ** 2
+    return float((k2 * k2 + s) / (k2 * (k1 + k2) + s))
 
 
-def spring_constant(lattice: str, spacing: float, k2_over_k1: float = 0.0,
-                    wave_speed: float = 1.0, mass: float = 1.0) -> tuple[float, str]:
-    """ka that gives the lattice the wave speed ``wave_speed``."""
-    factor, source = wave_speed_factor(lattice, k2_over_k1)
-    return wave_speed**2 * mass / (factor * spacing**2), source
+def square_wave_speed_factor(k2_over_k1: float, angle_deg: float = 0.0) -> float:
+    """c^2 / (k1 d^2 / m) of the square lattice along (cos a, sin a).
+
+    From the stiffnesses C11 = k1 + k2, C12 = C66 = k2 of the continuum limit:
+    1/E(a) = S11 - (2 S11 - 2 S12 - S66) sin^2 a cos^2 a; the density is 1/d^2.
+    """
+    c11, c12, c66 = 1.0 + k2_over_k1, k2_over_k1, k2_over_k1
+    s11 = c11 / (c11 * c11 - c12 * c12)
+    s12 = -c12 / (c11 * c11 - c12 * c12)
+    a = np.radians(angle_deg)
+    compliance = s11 - (2.0 * s11 - 2.0 * s12 - 1.0 / c66) * (np.sin(a) * np.cos(a)) ** 2
+    return float(1.0 / compliance)
+
+
+def square_ratio_for_poisson(nu: float, angle_deg: float = 0.0) -> float:
+    """k2/k1 that gives the square lattice the Poisson ratio ``nu`` along ``angle_deg``."""
+    low, high = 1e-6, 1e3
+    f = lambda r: square_poisson_ratio(r, angle_deg) - nu  # noqa: E731
+    if f(low) * f(high) > 0:
+        raise InputError(f"nu must be between {square_poisson_ratio(low, angle_deg):.3f} and "
+                         f"{square_poisson_ratio(high, angle_deg):.3f} along {angle_deg} degrees, got {nu}")
+    return float(brentq(f, low, high, xtol=1e-14, rtol=1e-14))
+
+
+@lru_cache(maxsize=1)
+def _table(path: str) -> tuple[dict, ...]:
+    return tuple(json.loads(Path(path).read_text())["materials"])
+
+
+def calibrated(lattice: str, k2_over_k1: float | None = None, angle_deg: float = 0.0,
+               table: Path | str = TABLE) -> dict:
+    """The table's entry for a lattice; InputError if it was not calibrated."""
+    ratio = k2_over_k1 if lattice == "square" else None
+    if Path(table).exists():
+        for entry in _table(str(table)):
+            if (entry["lattice"] == lattice and entry["angle_deg"] == angle_deg
+                    and (ratio is None or np.isclose(entry["k2_over_k1"], ratio, rtol=1e-9))):
+                return entry
+    what = f"lattice {lattice}" + (f" with k2_over_k1 = {ratio:.6g}" if ratio is not None else "")
+    extra = f" --square {ratio:.6g}" if ratio is not None else ""
+    raise InputError(f"{what} is not calibrated (not in {Path(table).name}); "
+                     f"run: python -m calibration run{extra}")
+
+
+def spring_constant(lattice: str, spacing: float, k2_over_k1: float | None = None,
+                    wave_speed: float = 1.0, mass: float = 1.0) -> tuple[float, dict]:
+    """ka that gives the lattice the wave speed ``wave_speed``, and the table entry."""
+    entry = calibrated(lattice, k2_over_k1)
+    return wave_speed**2 * mass / (entry["c2"] * spacing**2), entry

@@ -163,8 +163,9 @@ def build_scene(spec: SceneSpec) -> Scene:
     R = spec.radius
     disk, wall = build_bodies(spec)
 
-    ka_disk, c_source = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
-    ka_wall, _ = spring_constant("random", wall.spacing * R, wave_speed=spec.wall_wave_speed)
+    ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
+    ka_wall, wall_material = spring_constant("random", wall.spacing * R,
+                                             wave_speed=spec.wall_wave_speed)
     cutoff = wall.spacing * R
     gamma = np.radians(spec.gamma_deg)
     velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
@@ -206,13 +207,14 @@ def build_scene(spec: SceneSpec) -> Scene:
                                np.full(len(disk_order), DISK)])
 
     scene = Scene(spec, positions, velocities, types, molecule, springs, ka)
-    scene.info = scene_info(scene, disk, wall, ka_disk, ka_wall, cutoff, c_source, velocity,
-                            len(row))
+    scene.info = scene_info(scene, disk, wall, ka_disk, ka_wall, cutoff, disk_material,
+                            wall_material, velocity, len(row))
     return scene
 
 
 def scene_info(scene: Scene, disk: Body, wall: Body, ka_disk: float, ka_wall: float,
-               cutoff: float, c_source: str, velocity: np.ndarray, n_row: int) -> dict:
+               cutoff: float, disk_material: dict, wall_material: dict, velocity: np.ndarray,
+               n_row: int) -> dict:
     """Derived quantities that a run and its analysis need."""
     spec = scene.spec
     R = spec.radius
@@ -227,7 +229,11 @@ def scene_info(scene: Scene, disk: Body, wall: Body, ka_disk: float, ka_wall: fl
     return {
         "spec": asdict(spec),
         "units": {"length": "R", "velocity": "c", "time": "R/c", "mass": "m (one point)",
-                  "R": R, "c": 1.0, "m": 1.0, "c_source": c_source},
+                  "R": R, "c": 1.0, "m": 1.0,
+                  "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
+                              f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)"},
+        "disk_material": disk_material,
+        "wall_material": wall_material,
         "n_atoms": int(len(scene.positions)),
         "n_disk_points": int(in_disk.sum()),
         "n_wall_points": int((~in_disk).sum()),
