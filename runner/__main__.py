@@ -18,7 +18,7 @@ def add_run_arguments(parser) -> None:
                        help=f"time step in R/c (default: {defaults.dt})")
     group.add_argument("--integrator", choices=INTEGRATORS, default=defaults.integrator)
     group.add_argument("--nrespa", type=count(1), default=defaults.nrespa,
-                       help="respa: spring steps per contact step")
+                       help="respa: spring steps per step (springs on the inner level)")
     group.add_argument("--contact", choices=CONTACTS, default=defaults.contact,
                        help="segment: the paper's point-to-polyline contact (default); "
                             "pair: the same exponential between points")

@@ -15,9 +15,9 @@ ROUTES = ("lmp", "python")
 
 @dataclass
 class RunOptions:
-    dt: float = 0.001            # time step, R / c
+    dt: float = 0.004            # time step, R / c (docs/benchmarks/time_vs_error.md)
     integrator: str = "verlet"
-    nrespa: int = 2              # respa: spring steps per contact step
+    nrespa: int = 2              # respa: spring steps per step
     contact: str = "segment"     # segment: the paper's contact; pair: the design card
     rule: str = "lever"          # segment contact: lever rule or explicit gradient
     springs: str = "class2"      # class2: the model's quartic springs; harmonic: no quartic

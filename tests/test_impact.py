@@ -172,10 +172,14 @@ def test_pair_variant_lets_the_disk_into_the_wall(tmp_path):
     assert not (folder / "result.json").exists()
 
 
-def test_one_and_two_ranks_agree_on_a_grazing_impact(tmp_path):
-    """Round-off makes the trajectories drift apart: seen 1e-9 at 80.4 degrees."""
-    scene = build_scene(SceneSpec(gamma_deg=80.4))
+@pytest.mark.parametrize("gamma, bound", [(45.0, 1e-9), (80.4, 1e-4)])
+def test_one_and_two_ranks_agree(tmp_path, gamma, bound):
+    """Round-off from the different summation order grows along the trajectory,
+    the more so at grazing incidence, where the impact is chaotic: measured at
+    dt = 4e-3, 1e-13 at 45 degrees and 2e-6 at 80.4 (docs/validation.md); a
+    perturbation of 1e-9 R spreads e by about 1e-2 there."""
+    scene = build_scene(SceneSpec(gamma_deg=gamma))
     results = [run_scene(write_scene(scene, tmp_path / str(n)), RunOptions(nprocs=n)) for n in (1, 2)]
     assert results[0]["steps"] == results[1]["steps"]
     for key in ("e", "beta", "omega"):
-        assert abs(results[0][key] - results[1][key]) < 1e-7
+        assert abs(results[0][key] - results[1][key]) < bound

@@ -1,0 +1,86 @@
+"""What the run's settings cost: stopping early, output, neighbour lists.
+
+    python bench/run_settings.py [--repeats 3]
+
+The default scene (random lattice, 45 degrees) at the default time step, each
+setting changed alone, interleaved and repeated; medians of the wall time
+of the whole impact. Rough impacts are chaotic, so any change of summation
+order (neighbour lists) moves e and beta a little: they are shown too.
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import tempfile
+from pathlib import Path
+
+from common import ROOT, loop_seconds, markdown_table, median, write_report
+
+from analysis.result import analyse_run
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from runner.lammps_run import command_line
+from runner.options import RunOptions
+
+DEFAULT = RunOptions()
+SETTINGS = {
+    "defaults": {},
+    "no early stop (run to t = 60)": {"early_stop": "no", "tmax": "60"},
+    "series every step": {"every": "1"},
+    "series every 100 steps": {"every": "100"},
+    "checks every 1000 steps": {"check": "1000"},
+    "skin 0.25 spacing": {"skin_factor": "0.25"},
+    "skin 1 spacing": {"skin_factor": "1.0"},
+    "neighbor bin": {"neighbor_style": "bin"},
+}
+
+
+def run(folder: Path, changes: dict[str, str]) -> dict:
+    variables = {"scene": str(folder), "out": str(folder), **DEFAULT.deck_variables()}
+    changes = dict(changes)
+    skin_factor = changes.pop("skin_factor", None)
+    if skin_factor:
+        spacing = float((folder / "scene.lmp").read_text().split("variable skin")[1].split()[1]) * 2
+        changes["skin"] = repr(float(skin_factor) * spacing)
+    variables.update(changes)
+    log = folder / "log.lammps"
+    import time
+    start = time.perf_counter()
+    subprocess.run(["lmp"] + command_line(variables, log), cwd=ROOT, check=True, capture_output=True)
+    seconds = time.perf_counter() - start
+    (folder / "run.json").write_text(
+        '{"options": ' + __import__("json").dumps(DEFAULT.as_dict()) +
+        f', "wall_seconds": {seconds}, "lammps_version": "x", "git_revision": "x"}}')
+    result = analyse_run(folder)
+    loop, steps = loop_seconds(log)
+    return {"seconds": seconds, "loop": loop, "steps": steps, "e": result["e"], "beta": result["beta"]}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    scene = build_scene(SceneSpec(gamma_deg=45.0))
+    times = {name: [] for name in SETTINGS}
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = write_scene(scene, Path(tmp) / "scene")
+        for _ in range(args.repeats):
+            for name, changes in SETTINGS.items():
+                times[name].append(run(folder, changes))
+    base = median([t["seconds"] for t in times["defaults"]])
+    rows = []
+    for name, runs in times.items():
+        seconds = median([t["seconds"] for t in runs])
+        rows.append([name, f"{runs[0]['steps']}", f"{seconds:.2f}", f"{(seconds / base - 1) * 100:+.0f}",
+                     f"{runs[0]['e']:.5f}", f"{runs[0]['beta']:+.5f}"])
+        print(" | ".join(rows[-1]), flush=True)
+    body = (f"Default scene (random lattice, 45 degrees, dt = {DEFAULT.dt:g}), medians of "
+            f"{args.repeats} interleaved runs.\n\n"
+            + markdown_table(["setting", "steps", "s per impact", "% vs defaults", "e", "beta"], rows))
+    print(body)
+    print(f"wrote {write_report('run_settings', 'Run settings', 'python bench/run_settings.py', body)}")
+
+
+if __name__ == "__main__":
+    main()

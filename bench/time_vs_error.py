@@ -1,0 +1,176 @@
+"""Run time against error: LAMMPS settings and the reference, on the validation scenes.
+
+    make bench          (python bench/time_vs_error.py)
+
+The nine scenes of make validate (random, triangular and square lattices at
+5.7, 45 and 80.4 degrees), each twice: with smooth surfaces, where e and beta
+of an impact converge, for the error against the converged reference
+(Suzuki, dt = 1e-3); and with the model's rough surfaces, which are chaotic
+(reference/validate.py), for the wall time, the energy error and whether the
+run survives. Settings: LAMMPS velocity Verlet and rRESPA over a range of time
+steps up to where they fail, the pair variant, and the reference's schemes
+(Forest-Ruth at 1e-3 is the paper's). Writes docs/benchmarks/time_vs_error.md
+and .png and picks the fastest setting whose error stays below 1e-3 on every
+scene and that survives every rough scene.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+import numpy as np
+
+from common import ROOT, markdown_table, median, write_report
+
+from builder.lammps_data import write_scene
+from builder.scene import build_scene
+from reference.run import ReferenceOptions, Unstable, run_reference
+from reference.validate import reference_runs, scenes
+from runner.impact import run_scene
+from runner.lammps_run import LammpsError
+from runner.options import RunOptions
+
+TOLERANCE = 1e-3          # on e and beta, smooth scenes
+ENERGY_TOLERANCE = 5e-3   # on the total energy, rough scenes: every scheme has ~1e-3
+VERLET_STEPS = (1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2)
+RESPA_STEPS = (4e-3, 8e-3, 1.2e-2, 1.6e-2)
+
+
+def settings() -> list[tuple[str, str, object]]:
+    """(label, kind, options) of every configuration, cheapest last within a family."""
+    runs = [(f"verlet dt={dt:g}", "lammps", RunOptions(dt=dt)) for dt in VERLET_STEPS]
+    runs += [(f"respa 2 dt={dt:g}", "lammps", RunOptions(dt=dt, integrator="respa", nrespa=2))
+             for dt in RESPA_STEPS]
+    runs += [("verlet dt=0.004 pair", "lammps", RunOptions(dt=4e-3, contact="pair"))]
+    runs += [("reference forest-ruth dt=0.001 (paper)", "reference",
+              ReferenceOptions(integrator="forest-ruth", dt=1e-3))]
+    return runs
+
+
+def run_one(kind: str, options, folder: Path) -> dict:
+    try:
+        if kind == "lammps":
+            return run_scene(folder, options)
+        return run_reference(folder, options)
+    except (LammpsError, Unstable) as error:
+        return {"error": str(error)}
+
+
+def measure(out: Path, only: list[str] | None) -> dict:
+    smooth, rough = scenes(roughness=0.0), scenes()
+    references = reference_runs(smooth, out / "smooth")
+    rows = {}
+    for label, kind, options in settings():
+        if only and not any(word in label for word in only):
+            continue
+        tag = label.replace(" ", "_").replace("=", "").replace("(", "").replace(")", "")
+        for surface, specs in (("smooth", smooth), ("rough", rough)):
+            for name, spec in specs.items():
+                folder = out / surface / name / tag
+                if not (folder / "scene.data").exists():
+                    write_scene(build_scene(spec), folder)
+                result = run_one(kind, options, folder)
+                row = {"surface": surface}
+                if "error" in result:
+                    row["error"] = result["error"]
+                else:
+                    row.update(seconds=result["wall_seconds"], steps=result["steps"],
+                               drift=abs(result["energy_drift"]))
+                    if surface == "smooth":
+                        row.update(de=abs(result["e"] - references[name]["e"]),
+                                   dbeta=abs(result["beta"] - references[name]["beta"]))
+                rows[(label, surface, name)] = row
+                print(label, surface, name, row, flush=True)
+    return rows
+
+
+def summary(rows: dict) -> list[dict]:
+    labels = list(dict.fromkeys(label for label, _, _ in rows))
+    out = []
+    for label in labels:
+        smooth = [r for (l, s, _), r in rows.items() if l == label and s == "smooth" and "error" not in r]
+        rough = [r for (l, s, _), r in rows.items() if l == label and s == "rough"]
+        failed = [r["error"] for r in rough if "error" in r]
+        survived = [r for r in rough if "error" not in r]
+        out.append({
+            "label": label, "failed": len(failed), "first_error": failed[0] if failed else "",
+            "de": max((r["de"] for r in smooth), default=np.nan),
+            "dbeta": max((r["dbeta"] for r in smooth), default=np.nan),
+            "error": max((max(r["de"], r["dbeta"]) for r in smooth), default=np.nan),
+            "drift": max((r["drift"] for r in survived), default=np.nan),
+            "seconds": median([r["seconds"] for r in survived]) if survived else np.nan,
+            "steps": median([r["steps"] for r in survived]) if survived else np.nan,
+        })
+    return out
+
+
+def plot(table: list[dict], path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for family, marker in (("verlet dt", "o"), ("respa", "s"), ("reference", "^"), ("pair", "x")):
+        points = [r for r in table if r["label"].startswith(family) or (family == "pair" and "pair" in r["label"])]
+        points = [r for r in points if not r["failed"] and not (family != "pair" and "pair" in r["label"])]
+        if points:
+            ax.loglog([r["error"] for r in points], [r["seconds"] for r in points], marker,
+                      label=family.replace(" dt", ""), linestyle="-" if family in ("verlet dt", "respa") else "")
+            for r in points:
+                ax.annotate(r["label"].split("dt=")[-1].split(" ")[0], (r["error"], r["seconds"]),
+                            fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.axvline(TOLERANCE, color="grey", linestyle=":", label="1e-3")
+    ax.set_xlabel("largest error of e or beta, nine smooth scenes")
+    ax.set_ylabel("median wall time per rough impact (s)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=str(ROOT / "runs" / "bench"))
+    parser.add_argument("--only", nargs="*", help="only settings whose label contains one of these")
+    parser.add_argument("--summarise", action="store_true",
+                        help="only redo the table from the rows of the last run (rows.json)")
+    args = parser.parse_args()
+    saved = Path(args.out) / "rows.json"
+    if args.summarise:
+        rows = {tuple(k.split("|")): v for k, v in json.loads(saved.read_text()).items()}
+    else:
+        rows = measure(Path(args.out), args.only)
+        saved.write_text(json.dumps({"|".join(k): v for k, v in rows.items()}, indent=1))
+    table = summary(rows)
+    lammps_ok = [r for r in table if not r["failed"] and r["error"] < TOLERANCE
+                 and r["drift"] < ENERGY_TOLERANCE and "reference" not in r["label"]]
+    best = min(lammps_ok, key=lambda r: r["seconds"]) if lammps_ok else None
+    paper = next((r for r in table if "paper" in r["label"]), None)
+    lines = []
+    for r in table:
+        status = f"{r['failed']} of 9 failed: {r['first_error'][:70]}" if r["failed"] else ""
+        lines.append([r["label"], f"{r['de']:.1e}", f"{r['dbeta']:.1e}", f"{r['drift']:.1e}",
+                      f"{r['steps']:.0f}", f"{r['seconds']:.2f}", status])
+    body = markdown_table(["setting", "max error e (smooth)", "max error beta (smooth)",
+                           "max energy error (rough)", "median steps", "median s per impact (rough)",
+                           "rough runs that failed"], lines)
+    if best:
+        body += (f"\n\nFastest setting with errors of e and beta below {TOLERANCE:g} on every smooth "
+                 f"scene, an energy error below {ENERGY_TOLERANCE:g} on every rough scene, and no "
+                 f"failure: **{best['label']}**, largest error {best['error']:.1e} (margin "
+                 f"{TOLERANCE / best['error']:.1f}x), energy error {best['drift']:.1e} (margin "
+                 f"{ENERGY_TOLERANCE / best['drift']:.1f}x), median {best['seconds']:.2f} s per impact.")
+    if best and paper:
+        body += (f" The paper's scheme (Forest-Ruth at 1e-3, our numpy implementation) takes a "
+                 f"median {paper['seconds']:.1f} s ({paper['seconds'] / best['seconds']:.0f}x) with "
+                 f"largest error {paper['error']:.1e}.")
+    plot(table, ROOT / "docs" / "benchmarks" / "time_vs_error.png")
+    body += "\n\n![time against error](time_vs_error.png)\n"
+    (ROOT / "docs" / "benchmarks" / "time_vs_error.json").write_text(json.dumps(table, indent=1) + "\n")
+    print(body)
+    print(f"wrote {write_report('time_vs_error', 'Run time against error', 'make bench', body)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+"""LAMMPS at its default settings against the reference (make validate, small).
+
+Nine scenes: random, triangular and square lattices at a near-normal (5.7), a
+middle (45) and a grazing (80.4 degree) angle, with 200-point disks for speed.
+Smooth surfaces, where e and beta of one impact converge: LAMMPS's defaults
+against the reference's converged fourth-order run, within 1e-3. Rough
+surfaces, where they do not (chaos, docs/validation.md): LAMMPS against the
+reference's velocity Verlet at the same step, the same algorithm on
+independently written forces.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from reference.run import ReferenceOptions
+from reference.validate import compare, reference_runs, scenes
+from runner.options import RunOptions
+
+DEFAULTS = RunOptions()
+
+
+@pytest.fixture(scope="module")
+def smooth(tmp_path_factory):
+    out = tmp_path_factory.mktemp("smooth")
+    specs = scenes(n_disk=200, roughness=0.0)
+    references = reference_runs(specs, out)
+    return {name: compare(spec, out / name / "lammps", DEFAULTS, references[name],
+                          out / name / "reference") for name, spec in specs.items()}
+
+
+@pytest.fixture(scope="module")
+def rough(tmp_path_factory):
+    out = tmp_path_factory.mktemp("rough")
+    specs = scenes(n_disk=200)
+    same_step = ReferenceOptions(integrator="verlet", dt=DEFAULTS.dt)
+    twins = reference_runs(specs, out, options=same_step, label="reference_verlet")
+    return {name: compare(spec, out / name / "lammps", DEFAULTS, twins[name],
+                          out / name / "reference_verlet") for name, spec in specs.items()}
+
+
+@pytest.mark.parametrize("name", list(scenes(n_disk=200)))
+def test_default_settings_agree_with_the_converged_reference(smooth, name):
+    assert abs(smooth[name]["de"]) < 1e-3
+    assert abs(smooth[name]["dbeta"]) < 1e-3
+
+
+@pytest.mark.parametrize("name", list(scenes(n_disk=200)))
+def test_lammps_and_reference_verlet_agree_on_rough_scenes(rough, name):
+    assert abs(rough[name]["de"]) < 1e-6
+    assert abs(rough[name]["dbeta"]) < 1e-6
+    assert rough[name]["velocity"] < 1e-6
