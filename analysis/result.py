@@ -51,6 +51,8 @@ def analyse_run(folder: Path | str) -> dict:
         "n_disk_points": scene["n_disk_points"],
         "n_wall_points": scene["n_wall_points"],
         "c_source": scene["units"]["c_source"],
+        "nu": scene["disk_material"]["nu"],
+        "stop_rule": run["options"].get("stop_rule", "clearance"),
         "vx_in": rebound.vx_in, "vy_in": rebound.vy_in,
         "vx_out": rebound.vx_out, "vy_out": rebound.vy_out,
     }

@@ -25,6 +25,7 @@ class RunOptions:
     every: int = 10              # steps between rows of series.dat
     check: int = 100             # steps between checks whether the impact is over
     dump_every: int = 0          # steps between dump frames; 0: no dump
+    stop_rule: str = "predict"   # predict (rigid-body extrapolation) or clearance (runner/stop_rule.py)
     nprocs: int = 1              # MPI ranks (route lmp)
     route: str = "lmp"           # lmp: the lmp program; python: the lammps module
 
@@ -48,6 +49,7 @@ class RunOptions:
         if self.dump_every and self.check % self.dump_every:
             raise InputError(f"dump_every must divide check ({self.check}) so that the last "
                              f"state is dumped, got {self.dump_every}")
+        require_choice("stop_rule", self.stop_rule, ("predict", "clearance"))
         require_choice("route", self.route, ROUTES)
         if self.route == "python" and self.nprocs != 1:
             raise InputError("nprocs must be 1 with route python (run MPI jobs through lmp)")
@@ -58,6 +60,6 @@ class RunOptions:
     def deck_variables(self) -> dict[str, str]:
         """The deck's index variables for these options."""
         names = ("dt", "integrator", "nrespa", "contact", "rule", "springs", "tmax", "every",
-                 "check", "dump_every")
+                 "check", "dump_every", "stop_rule")
         return {name: repr(getattr(self, name)) if isinstance(getattr(self, name), float)
                 else str(getattr(self, name)) for name in names}

@@ -1,0 +1,111 @@
+"""The predictive stop rule against runs that go on long after it would stop.
+
+    python bench/stop_rule.py [--seeds 3]
+
+Every lattice of the study at angles from 5.7 to 80.5 degrees, several seeds.
+Each impact runs twice: stopped by the predictive rule, and continued to
+t = 100 R/c. A contact in the long run after the predictive stop is a missed
+re-contact; the table counts them and how much they change e and beta, and
+the steps each way. Writes docs/benchmarks/stop_rule.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from common import markdown_table, median, write_report
+
+from analysis.series import read_series
+from builder.lammps_data import write_scene
+from builder.materials import square_ratio_for_poisson
+from builder.scene import SceneSpec, build_scene
+from runner.impact import run_scene
+from runner.options import RunOptions
+
+LATTICES = {"random": {}, "triangular": {},
+            "square nu=0.1": {"k2_over_k1": square_ratio_for_poisson(0.1)},
+            "square nu=0.3": {"k2_over_k1": square_ratio_for_poisson(0.3)}}
+ANGLES = (5.7, 26.6, 45.0, 63.4, 80.5)
+LONG = 100.0
+
+
+def long_run(folder: Path) -> dict:
+    """The impact continued to t = LONG whatever happens (the deck's early_stop no)."""
+    from runner.lammps_run import run_lmp
+    import json
+    options = RunOptions(tmax=LONG)
+    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables(),
+                 "early_stop": "no"}
+    seconds = run_lmp(variables, folder / "log.lammps")
+    (folder / "run.json").write_text(json.dumps({"options": options.as_dict(), "wall_seconds": seconds,
+                                                 "lammps_version": "x", "git_revision": "x"}))
+    from analysis.result import analyse_run
+    return analyse_run(folder)
+
+
+def run_predictive(folder: Path, extra_vars: dict) -> dict:
+    from runner.lammps_run import run_lmp
+    import json
+    options = RunOptions()
+    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables(), **extra_vars}
+    seconds = run_lmp(variables, folder / "log.lammps")
+    (folder / "run.json").write_text(json.dumps({"options": options.as_dict(), "wall_seconds": seconds,
+                                                 "lammps_version": "x", "git_revision": "x"}))
+    from analysis.result import analyse_run
+    return analyse_run(folder)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seeds", type=int, default=3)
+    parser.add_argument("--slack", type=float, default=None, help="stop_slack, R (deck default: 0.1 cutoff)")
+    parser.add_argument("--vibration", type=float, default=1.0, help="stop_vibration (0 or 1)")
+    parser.add_argument("--name", default="stop_rule")
+    args = parser.parse_args()
+    extra_vars = {"stop_vibration": repr(args.vibration)}
+    if args.slack is not None:
+        extra_vars["stop_slack"] = repr(args.slack)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, extra in LATTICES.items():
+            lattice = name.split()[0]
+            steps, long_steps, misses, worst = [], [], 0, 0.0
+            for seed in range(1, args.seeds + 1):
+                for gamma in ANGLES:
+                    scene = build_scene(SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra))
+                    tag = f"{lattice}{extra.get('k2_over_k1', '')}_{seed}_{gamma}"
+                    stopped = run_predictive(write_scene(scene, Path(tmp) / f"{tag}_p"), extra_vars)
+                    folder = write_scene(scene, Path(tmp) / f"{tag}_long")
+                    full = long_run(folder)
+                    series = read_series(folder / "series.dat")
+                    later = (series["time"] > stopped["time_end"]) & (series["pe_contact"] > 0)
+                    if later.any():
+                        misses += 1
+                        gap = max(abs(stopped[k] - full[k]) for k in ("e", "beta"))
+                        worst = max(worst, gap)
+                        print(f"  missed re-contact: {name} seed {seed} gamma {gamma}: stopped at "
+                              f"{stopped['time_end']:.1f}, contact again at {series['time'][later][0]:.1f}, "
+                              f"e and beta change by {gap:.1e}", flush=True)
+                    steps.append(stopped["steps"])
+            rows.append([name, str(len(steps)), f"{median(steps):.0f}", f"{LONG / RunOptions().dt:.0f}",
+                         str(misses), f"{worst:.1e}" if misses else "-"])
+            print(" | ".join(rows[-1]), flush=True)
+    body = (f"Angles {', '.join(f'{a:g}' for a in ANGLES)} degrees, seeds 1 to {args.seeds}, "
+            f"default settings, stop_vibration {args.vibration:g}, stop_slack "
+            f"{'0.1 cutoff' if args.slack is None else args.slack}; the long runs go on to "
+            f"t = {LONG:g} R/c.\n\n"
+            + markdown_table(["lattice", "impacts", "median steps, predictive stop",
+                              f"steps to t = {LONG:g}", "contacts after the stop",
+                              "largest change of e or beta they make"], rows))
+    print(body)
+    command = f"python bench/stop_rule.py --vibration {args.vibration:g}" + (
+        f" --slack {args.slack:g}" if args.slack is not None else "") + f" --name {args.name}"
+    print(f"wrote {write_report(args.name, 'Stop rule', command, body)}")
+
+
+if __name__ == "__main__":
+    main()
