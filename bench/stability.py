@@ -47,7 +47,7 @@ def sweep(tmp: Path) -> list[list[str]]:
                             ("respa 2", lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=2))):
             last_good, failure = None, None
             for dt in STEPS:
-                folder = write_scene(scene, tmp / f"{lattice}_{gamma}_{vn}_{label}_{dt}")
+                folder = write_scene(scene, tmp / f"{lattice}_{gamma}_{vn}_{label.replace(' ', '')}_{dt}")
                 try:
                     result = run_scene(folder, make(dt))
                     last_good = (dt, result)

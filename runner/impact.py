@@ -40,6 +40,9 @@ def run_scene(folder: Path | str, options: RunOptions) -> dict:
     """
     options.validate()
     folder = Path(folder).resolve()
+    if any(c.isspace() for c in str(folder)):
+        raise InputError(f"scene: the folder's path must not contain spaces (LAMMPS splits "
+                         f"commands at them): {folder}")
     for name in ("scene.data", "scene.lmp", "scene.json"):
         if not (folder / name).is_file():
             raise InputError(f"scene: no {name} in {folder} (write one with python -m builder scene)")

