@@ -1,0 +1,105 @@
+"""What a finished study gives: tables, fits, figures and a results page."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from . import figures
+from .fits import bootstrap, fit_compliant, fit_walton
+from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, write_csv
+
+
+def fit_all(rows: list[dict], resamples: int = 200) -> dict:
+    """Walton's (mu, beta0) for every lattice; the compliant model's mu for the
+    random lattice, with nu from the calibration and alpha = K from the inertia."""
+    fits = {}
+    for lattice in sorted({r["study_lattice"] for r in rows}):
+        data = groups(rows, lattice)
+        if len(data) < 3 or min(len(g) for g in data) < 2:
+            continue
+        inertia = np.mean([float(r["disk_inertia_ratio"]) for r in rows if r["study_lattice"] == lattice])
+        nu = float(next(r["nu"] for r in rows if r["study_lattice"] == lattice))
+        K = 1.0 + 1.0 / inertia
+        (mu, beta0), (mu_sd, beta0_sd) = bootstrap(data, lambda d: fit_walton(d, K), resamples)
+        fits[lattice] = {"walton": {"mu": mu, "mu_sd": mu_sd, "beta0": beta0, "beta0_sd": beta0_sd,
+                                    "K": K}, "nu": nu, "inertia_ratio": inertia}
+        if lattice == "random":
+            (mu_c,), (mu_c_sd,) = bootstrap(data, lambda d: fit_compliant(d, nu, K),
+                                            max(20, resamples // 10))
+            fits[lattice]["compliant"] = {"mu": mu_c, "mu_sd": mu_c_sd, "nu": nu, "alpha": K}
+    return json.loads(json.dumps(fits, default=float))
+
+
+def beta0_question(fits: dict) -> str:
+    """Does beta0 depend on the Poisson ratio? The square lattices differ only in it."""
+    a, b = fits.get("square_nu0.1"), fits.get("square_nu0.3")
+    if not (a and b):
+        return "This study has not both square lattices; the question needs them."
+    difference = b["walton"]["beta0"] - a["walton"]["beta0"]
+    sigma = np.hypot(a["walton"]["beta0_sd"], b["walton"]["beta0_sd"])
+    verdict = ("depends on the Poisson ratio" if abs(difference) > 3 * sigma
+               else "does not depend on the Poisson ratio within the uncertainty")
+    return (f"beta0 = {a['walton']['beta0']:.3f} +- {a['walton']['beta0_sd']:.3f} for nu = 0.1 and "
+            f"{b['walton']['beta0']:.3f} +- {b['walton']['beta0_sd']:.3f} for nu = 0.3: a difference "
+            f"of {difference:+.3f} +- {sigma:.3f} ({abs(difference) / sigma:.1f} standard "
+            f"deviations), so beta0 {verdict}.")
+
+
+def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
+                 failed: list[dict], seconds: float) -> str:
+    lines = [f"# Results: study `{study['name']}`", "",
+             f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
+             f"from 5.7 to 80.5 degrees; {study['samples']} samples each; v_n = {study['vn']} c; "
+             f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
+             f"{study['options']['stop_rule']}. {len(failed)} impacts failed. LAMMPS time "
+             f"{seconds / 3600:.2f} core-hours. Tables: `impacts.csv` (one row per impact), "
+             f"`means.csv` (means and standard errors per lattice and angle), `fits.json`.", "",
+             "## Fitted parameters", "",
+             "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | compliant mu |", "|---|---|---|---|---|---|"]
+    for lattice, fit in fits.items():
+        walton = fit["walton"]
+        compliant = fit.get("compliant")
+        compliant_mu = f"{compliant['mu']:.3f} +- {compliant['mu_sd']:.3f}" if compliant else "-"
+        lines.append(f"| {lattice} | {fit['nu']:.3f} | {fit['inertia_ratio']:.4f} "
+                     f"| {walton['mu']:.3f} +- {walton['mu_sd']:.3f} "
+                     f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {compliant_mu} |")
+    lines += ["", "Uncertainties: standard deviations of the fits to bootstrap resamples of the "
+              "samples at each angle. Walton's e is the measured mean e at each angle; K = 1 + "
+              "MR^2/I from the measured inertia. The compliant model takes nu from the "
+              "calibration (docs/materials.md).", "", "## Does beta0 depend on the Poisson ratio?", "",
+              beta0_question(fits), "", "## Figures", ""]
+    for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
+                        ("e", "e against cot gamma"),
+                        ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
+                        ("beta_square", "beta against cot gamma, square lattices (nu = 0.1 and 0.3)")):
+        lines += [f"![{title}]({figure_dir}/{name}.png)", "", f"*{title}*", ""]
+    if failed:
+        lines += ["## Failed impacts", "", "| lattice | seed | gamma | error |", "|---|---|---|---|"]
+        lines += [f"| {f['lattice']} | {f['seed']} | {f['gamma']} | {f['error'][:100]} |" for f in failed]
+    return "\n".join(lines) + "\n"
+
+
+def report(study, resamples: int = 200, page: Path | None = None) -> dict:
+    """Write impacts.csv, means.csv, fits.json, figures/ and results.md for a study."""
+    jobs = study.jobs()
+    rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
+    rows.sort(key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
+    failed = [json.loads((Path(j["folder"]) / "failed.json").read_text())
+              for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
+    out = study.folder
+    write_csv(rows, out / "impacts.csv", COLUMNS)
+    means = mean_rows(rows)
+    write_csv(means, out / "means.csv", MEAN_COLUMNS)
+    fits = fit_all(rows, resamples)
+    (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
+    page = page or out / "results.md"
+    figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
+    figures.draw(means, fits, figure_dir)
+    info = json.loads((out / "study.json").read_text())
+    seconds = sum(float(r["wall_seconds"]) for r in rows)
+    page.write_text(results_page(info, rows, means, fits, figure_dir.relative_to(page.parent).as_posix(),
+                                 failed, seconds))
+    return {"rows": len(rows), "failed": len(failed), "fits": fits, "page": str(page)}

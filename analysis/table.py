@@ -1,0 +1,84 @@
+"""The study's tables: one row per impact, and means per lattice and angle."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import numpy as np
+
+# The columns of impacts.csv, in order; every result.json has them.
+COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
+           "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
+           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
+           "contact", "stop_rule", "lammps_version", "git_revision")
+NUMERIC = ("seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega", "contact_time",
+           "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
+           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt")
+MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
+                "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
+                "vibration_disk", "vibration_wall", "disk_inertia_ratio")
+
+
+def row(result: dict, study_lattice: str) -> dict:
+    """The table's row for one result.json."""
+    values = dict(result, study_lattice=study_lattice)
+    return {name: values.get(name, "") for name in COLUMNS}
+
+
+def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
+    path = Path(path)
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    with tmp.open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(columns), extrasaction="ignore")
+        writer.writeheader()
+        writer.writerows(rows)
+    tmp.replace(path)
+
+
+def read_csv(path: Path | str) -> list[dict]:
+    with Path(path).open(newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    for r in rows:
+        for name in NUMERIC:
+            if name in r and r[name] not in ("", None):
+                r[name] = float(r[name])
+    return rows
+
+
+def collect(folders: list[tuple[str, Path]]) -> list[dict]:
+    """Rows of every finished impact: (study lattice name, run folder) pairs."""
+    rows = []
+    for lattice, folder in folders:
+        result = Path(folder) / "result.json"
+        if result.exists():
+            rows.append(row(json.loads(result.read_text()), lattice))
+    return rows
+
+
+def mean_rows(rows: list[dict]) -> list[dict]:
+    """Means and standard errors per study lattice and angle."""
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        groups.setdefault((r["study_lattice"], float(r["gamma_deg"])), []).append(r)
+    out = []
+    for (lattice, gamma), group in sorted(groups.items()):
+        mean = {"study_lattice": lattice, "gamma_deg": gamma, "samples": len(group)}
+        for name in ("cot_gamma", "e", "beta", "omega", "contact_time", "vibration_disk",
+                     "vibration_wall", "disk_inertia_ratio"):
+            values = np.array([float(r[name]) for r in group])
+            mean[name] = float(values.mean())
+            mean[f"{name}_se"] = float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else 0.0
+        out.append(mean)
+    return out
+
+
+def groups(rows: list[dict], lattice: str) -> list[np.ndarray]:
+    """(psi, e, beta) per sample, one array per angle, for the fits."""
+    by_angle: dict[float, list] = {}
+    for r in rows:
+        if r["study_lattice"] == lattice:
+            by_angle.setdefault(float(r["gamma_deg"]), []).append(
+                (float(r["cot_gamma"]), float(r["e"]), float(r["beta"])))
+    return [np.array(by_angle[g]) for g in sorted(by_angle)]
