@@ -1,8 +1,9 @@
-"""Command line: python -m runner {impact,run,demo} --help"""
+"""Command line: python -m runner {impact,run,study} --help"""
 
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from builder.cli import OneLineParser, add_scene_arguments, count, positive_float, spec_from_args
 from builder.errors import BuildError, InputError
@@ -29,6 +30,9 @@ def add_run_arguments(parser) -> None:
                        help="stop with an error if the disk has not left by then (R/c)")
     group.add_argument("--dump-every", type=count(0), default=0,
                        help="steps between dump frames (0: no dump)")
+    group.add_argument("--stop-rule", choices=("predict", "clearance"), default=defaults.stop_rule,
+                       help="when the impact is over: predict (rigid-body extrapolation, default) "
+                            "or clearance (wait until the disk clears every asperity)")
     group.add_argument("--np", dest="nprocs", type=count(1), default=1, help="MPI ranks")
     group.add_argument("--route", choices=ROUTES, default="lmp",
                        help="lmp program (default) or the lammps Python module")
@@ -37,12 +41,12 @@ def add_run_arguments(parser) -> None:
 def options_from_args(args) -> RunOptions:
     return RunOptions(dt=args.dt, integrator=args.integrator, nrespa=args.nrespa,
                       contact=args.contact, rule=args.rule, springs=args.springs,
-                      tmax=args.tmax, dump_every=args.dump_every, nprocs=args.nprocs,
+                      tmax=args.tmax, dump_every=args.dump_every, stop_rule=args.stop_rule,
+                      nprocs=args.nprocs,
                       route=args.route)
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .demo import run_demo
     from .impact import run_impact, run_scene
     from .report import format_table
 
@@ -59,10 +63,21 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("scene", help="folder with scene.data, scene.lmp and scene.json")
     add_run_arguments(run)
 
-    demo = commands.add_parser("demo", help="a few angles for a couple of seeds, as a table")
-    demo.add_argument("--seeds", type=count(1), default=2, help="number of samples (default: 2)")
-    demo.add_argument("--out", default="runs/demo", help="folder for the runs (default: runs/demo)")
-    add_run_arguments(demo)
+    study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
+    study.add_argument("preset", choices=("paper", "demo"),
+                       help="paper: MODEL.md section 7 in full; demo: the random lattice, 4 samples")
+    study.add_argument("--samples", type=count(1), default=None, help="samples per lattice and angle")
+    study.add_argument("--angles", type=count(2), default=None, help="number of angles")
+    study.add_argument("--lattices", nargs="+", default=None,
+                       help="among random triangular square_nu0.1 square_nu0.3")
+    study.add_argument("--name", default=None, help="folder under runs/ (default: the preset)")
+    study.add_argument("--workers", type=count(1), default=2, help="worker processes (default: 2)")
+    study.add_argument("--partitions", type=count(0), default=0,
+                       help="run on this many LAMMPS partitions under mpirun instead of workers")
+    study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
+    study.add_argument("--dt", type=positive_float, default=None, help="time step, R/c")
+    study.add_argument("--n-disk", type=count(50), default=None, help="points in each disk (default: 800)")
+    study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
 
     args = parser.parse_args(argv)
     try:
@@ -73,11 +88,41 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "run":
             results = [run_scene(args.scene, options_from_args(args))]
         else:
-            results = run_demo(args.out, args.seeds, options_from_args(args))
+            return run_study_command(args)
     except (InputError, BuildError, LammpsError) as error:
         print(f"python -m runner: error: {error}", file=sys.stderr)
         return 2 if isinstance(error, InputError) else 1
     print(format_table(results))
+    return 0
+
+
+def run_study_command(args) -> int:
+    from dataclasses import replace
+
+    from analysis.report import report
+
+    from .study import PRESETS, run_study
+
+    study = PRESETS[args.preset]
+    changes = {key: value for key, value in (("samples", args.samples), ("angles", args.angles),
+                                              ("name", args.name), ("n_disk", args.n_disk))
+               if value is not None}
+    if args.lattices:
+        changes["lattices"] = tuple(args.lattices)
+    if args.dt:
+        changes["options"] = replace(study.options, dt=args.dt)
+    study = replace(study, **changes)
+    if not args.report_only:
+        if args.partitions:
+            from .partitions import run_study_partitions
+            run_study_partitions(study, args.partitions, args.retry_failed)
+        else:
+            run_study(study, args.workers, args.retry_failed)
+    # the paper's study, whatever its sample count, is the one the docs show
+    page = Path(__file__).resolve().parents[1] / "docs" / "results.md" \
+        if args.preset == "paper" and args.name is None else None
+    summary = report(study, page=page)
+    print(f"{summary['rows']} impacts, {summary['failed']} failed; results in {summary['page']}")
     return 0
 
 

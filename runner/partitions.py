@@ -1,0 +1,115 @@
+"""The study on LAMMPS partitions: mpirun -np P lmp -partition Px1 -in decks/sweep.lmp.
+
+Scenes are built a batch at a time into their impact folders, linked as
+1..N into a batch folder, and run by the partitions, which share them out as
+they go. After the batch the outputs are analysed like any run's. An error in
+one impact ends the whole MPI job (Debian's LAMMPS cannot catch it): the impact
+that has started but not finished is marked failed, the ones not started stay
+pending, and the next batch goes on.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+from analysis.result import analyse_run, write_json_atomically
+from builder.lammps_data import write_scene
+from builder.scene import build_scene
+
+from .impact import git_revision
+from .lammps_run import ROOT, LammpsError, lammps_version, mpi_environment, mpi_launcher
+from .study import KEEP, Study, state
+
+SWEEP = ROOT / "decks" / "sweep.lmp"
+
+
+def finished(folder: Path) -> bool:
+    """The deck writes the last row of energy.dat when an impact ends well."""
+    energy = folder / "energy.dat"
+    return energy.exists() and len(energy.read_text().splitlines()) == 3
+
+
+def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> int:
+    """Run ``jobs`` on the partitions; return how many finished or failed."""
+    shutil.rmtree(batch, ignore_errors=True)
+    batch.mkdir(parents=True)
+    for k, job in enumerate(jobs, start=1):
+        folder = Path(job["folder"])
+        shutil.rmtree(folder, ignore_errors=True)
+        write_scene(build_scene(study.spec(job)), folder, study.options.springs)
+        (batch / str(k)).symlink_to(folder.resolve())
+    partitions = min(partitions, len(jobs))      # a universe loop needs a job per partition
+    variables = study.options.deck_variables()
+    command = mpi_launcher(partitions) + ["lmp", "-partition", f"{partitions}x1",
+                                          "-in", str(SWEEP), "-plog", str(batch / "log"),
+                                          "-pscreen", "none", "-nocite",
+                                          "-var", "batch", str(batch), "-var", "count", str(len(jobs))]
+    for name, value in variables.items():
+        command += ["-var", name, value]
+    launched = subprocess.run(command, cwd=ROOT, capture_output=True, text=True,
+                              env=mpi_environment())
+    (ROOT / "tmp.lammps.variable").unlink(missing_ok=True)    # the universe loop's counter
+    logs = sorted(batch.glob("log.*"))
+    version = lammps_version(logs[0]) if logs else "unknown"
+    errors = [line for log in logs for line in log.read_text(errors="replace").splitlines()
+              if line.startswith("ERROR")]
+    settled = 0
+    for job in jobs:
+        folder = Path(job["folder"])
+        settled += finished(folder) or (folder / "series.dat").exists()
+        if finished(folder):
+            clock = [float(t) for t in (folder / "clock.txt").read_text().split()]
+            run = {"options": study.options.as_dict(), "wall_seconds": clock[1] - clock[0],
+                   "lammps_version": version, "git_revision": git_revision(),
+                   "partitions": partitions}
+            write_json_atomically(run, folder / "run.json")
+            write_json_atomically(analyse_run(folder), folder / "result.json")
+            for path in folder.iterdir():
+                if path.name not in KEEP:
+                    path.unlink()
+        elif (folder / "series.dat").exists():        # it was running when the job ended
+            message = re.sub(r"\s*\([^()]*\.cpp:\d+\)\s*$", "", errors[0]) if errors else \
+                "the MPI job ended during this impact"
+            (folder / "failed.json").write_text(json.dumps({**job, "error": message}, indent=1))
+            print(f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}",
+                  flush=True)
+        else:                                         # never started: next batch
+            shutil.rmtree(folder, ignore_errors=True)
+    if not settled:
+        raise LammpsError("the MPI job ended before any impact started: "
+                           + (errors[0] if errors else launched.stderr.strip()[-2000:]))
+    shutil.rmtree(batch, ignore_errors=True)
+    return settled
+
+
+def run_study_partitions(study: Study, partitions: int, retry_failed: bool = False,
+                         batch_size: int = 16) -> dict:
+    """Run every unfinished impact of the study on ``partitions`` LAMMPS partitions."""
+    study.validate()
+    study.folder.mkdir(parents=True, exist_ok=True)
+    from dataclasses import asdict
+    (study.folder / "study.json").write_text(json.dumps(asdict(study), indent=1))
+    jobs = study.jobs()
+    if retry_failed:
+        for job in jobs:
+            (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
+    start = time.monotonic()
+    before = sum(state(j) != "pending" for j in jobs)
+    while True:
+        todo = [j for j in jobs if state(j) == "pending"]
+        if not todo:
+            break
+        done = len(jobs) - len(todo)
+        rate = (done - before) / (time.monotonic() - start) if done > before else 0.0
+        print(f"  {done}/{len(jobs)} impacts, {len(todo)} to run on {partitions} partitions"
+              + (f", {rate * 60:.0f} per minute, {len(todo) / rate / 60:.1f} min left"
+                 if rate else ""), flush=True)
+        run_batch(study, todo[:batch_size * partitions], partitions, study.folder / ".batch")
+    counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
+    print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
+    return counts

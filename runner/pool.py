@@ -1,0 +1,105 @@
+"""Worker processes that survive crashing jobs.
+
+Debian's LAMMPS has no C++ exceptions: a LAMMPS error ends the process that
+runs it. Each worker here is a long-lived process that takes a group of jobs
+(the impacts of one sample, which share their bodies) and runs them in-process
+one after another (no program to start per impact), sending each result back
+before it starts the next. When a worker dies, the first job of its group
+without a result is the one that killed it: the parent records it as failed,
+puts the rest of the group back in the queue, and starts a new worker.
+
+Each worker talks to the parent through its own pipe, whose sends are
+synchronous: a worker that dies cannot lose a result it has sent, nor leave a
+lock held that the others need (as a shared multiprocessing.Queue can).
+"""
+
+from __future__ import annotations
+
+import collections
+import multiprocessing as mp
+import time
+from multiprocessing.connection import wait
+from typing import Callable, Sequence
+
+
+def _work(function, jobs, connection):
+    while True:
+        indices = connection.recv()
+        if indices is None:
+            return
+        for index in indices:
+            try:
+                connection.send(("done", index, function(jobs[index])))
+            except Exception as error:      # a Python error in the job: report, go on
+                connection.send(("error", index, f"{type(error).__name__}: {error}"))
+
+
+class _Worker:
+    def __init__(self, context, function, jobs):
+        self.connection, child = context.Pipe()
+        self.process = context.Process(target=_work, args=(function, jobs, child), daemon=True)
+        self.process.start()
+        child.close()
+        self.todo: list[int] = []           # the group's jobs not yet reported
+
+    def give(self, indices: list[int]) -> None:
+        self.todo = list(indices)
+        self.connection.send(self.todo)
+
+
+def run_jobs(function: Callable, jobs: Sequence, groups: Sequence[Sequence[int]], workers: int,
+             on_done: Callable[[int, object], None], on_failed: Callable[[int, str], None],
+             on_progress: Callable[[int], None] | None = None, progress_every: float = 10.0) -> None:
+    """Run ``function(jobs[i])`` for every job, a group at a time per worker;
+    call on_done(i, value) or on_failed(i, message) for each, in this process."""
+    context = mp.get_context("fork")
+    queued = collections.deque(list(g) for g in groups if g)
+    remaining = sum(len(g) for g in queued)
+    running: list[_Worker] = []
+
+    def report(worker: _Worker, kind: str, index: int, value) -> None:
+        nonlocal remaining
+        worker.todo.remove(index)
+        remaining -= 1
+        (on_done if kind == "done" else on_failed)(index, value)
+
+    def feed(worker: _Worker) -> None:
+        if queued:
+            worker.give(queued.popleft())
+
+    for _ in range(max(1, min(workers, len(queued)))):
+        running.append(_Worker(context, function, jobs))
+        feed(running[-1])
+    last = time.monotonic()
+    while remaining:
+        ready = wait([w.connection for w in running] + [w.process.sentinel for w in running],
+                     timeout=progress_every)
+        for worker in list(running):
+            if worker.connection in ready or worker.process.sentinel in ready:
+                try:
+                    while worker.connection.poll():
+                        report(worker, *worker.connection.recv())
+                except (EOFError, OSError):
+                    pass
+                if not worker.process.is_alive():
+                    worker.process.join()
+                    running.remove(worker)
+                    if worker.todo:             # the job it died in; the rest go back
+                        crashed, *rest = worker.todo
+                        report(worker, "error", crashed,
+                               f"the run ended its process (exit status {worker.process.exitcode})")
+                        if rest:
+                            queued.appendleft(rest)
+                    if queued:
+                        running.append(_Worker(context, function, jobs))
+                        feed(running[-1])
+                elif not worker.todo:
+                    feed(worker)
+        if on_progress and time.monotonic() - last > progress_every:
+            on_progress(sum(len(g) for g in groups) - remaining)
+            last = time.monotonic()
+    for worker in running:
+        worker.connection.send(None)
+        worker.process.join(timeout=5)
+    if on_progress:
+        on_progress(sum(len(g) for g in groups))

@@ -1,0 +1,161 @@
+"""The study of MODEL.md section 7: lattices x angles x samples, resumable.
+
+Every impact has its own folder, runs/<study>/<lattice>/s<seed>/g<gamma>/;
+it is finished when it holds result.json (written atomically, last) and
+failed when it holds failed.json. A study that is started again runs only
+what is neither, so a killed study loses nothing already done.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from builder.lammps_data import write_scene
+from builder.materials import square_ratio_for_poisson
+from builder.scene import SceneSpec, build_scene
+
+from .impact import run_scene
+from .options import RunOptions
+
+ROOT = Path(__file__).resolve().parents[1]
+LATTICES = {
+    "random": {"lattice": "random"},
+    "triangular": {"lattice": "triangular"},
+    "square_nu0.1": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.1)},
+    "square_nu0.3": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.3)},
+}
+# What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
+# rebuilt from its seed in a second if needed.
+KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
+
+
+def study_angles(count: int) -> list[float]:
+    """Angles whose cotangents are evenly spaced in log from 10 to cot 80.5 degrees."""
+    psi = np.geomspace(10.0, 1.0 / np.tan(np.radians(80.5)), count)
+    return [round(float(np.degrees(np.arctan(1.0 / p))), 4) for p in psi]
+
+
+@dataclass
+class Study:
+    name: str
+    lattices: tuple[str, ...] = tuple(LATTICES)
+    angles: int = 16
+    samples: int = 100
+    first_seed: int = 1
+    vn: float = 0.1
+    n_disk: int = 800
+    options: RunOptions = field(default_factory=lambda: RunOptions(every=25, route="python"))
+
+    @property
+    def folder(self) -> Path:
+        return ROOT / "runs" / self.name
+
+    def validate(self) -> None:
+        from builder.errors import InputError
+        for lattice in self.lattices:
+            if lattice not in LATTICES:
+                raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
+        if self.angles < 2 or self.samples < 1:
+            raise InputError(f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}")
+        self.options.validate()
+
+    def jobs(self) -> list[dict]:
+        """Every impact, grouped by sample: (lattice, seed) then angle."""
+        out = []
+        for seed in range(self.first_seed, self.first_seed + self.samples):
+            for lattice in self.lattices:
+                for gamma in study_angles(self.angles):
+                    folder = self.folder / lattice / f"s{seed}" / f"g{gamma:.4f}"
+                    out.append({"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)})
+        return out
+
+    def spec(self, job: dict) -> SceneSpec:
+        return SceneSpec(seed=job["seed"], gamma_deg=job["gamma"], vn=self.vn, n_disk=self.n_disk,
+                         **LATTICES[job["lattice"]])
+
+
+PRESETS = {
+    "paper": Study("paper"),
+    "demo": Study("demo", lattices=("random",), angles=16, samples=4),
+}
+
+
+def state(job: dict) -> str:
+    folder = Path(job["folder"])
+    if (folder / "result.json").exists():
+        return "done"
+    if (folder / "failed.json").exists():
+        return "failed"
+    return "pending"
+
+
+def run_job(study: Study, job: dict) -> dict:
+    """Build and run one impact, keep only the small files; a worker calls this."""
+    folder = Path(job["folder"])
+    if folder.exists():                    # an impact killed half-way starts over
+        shutil.rmtree(folder)
+    write_scene(build_scene(study.spec(job)), folder, study.options.springs)
+    result = run_scene(folder, study.options)
+    for path in folder.iterdir():
+        if path.name not in KEEP:
+            path.unlink()
+    return {"e": result["e"], "beta": result["beta"], "steps": result["steps"]}
+
+
+class Progress:
+    """done / total, rate and time left, on one line every few seconds."""
+
+    def __init__(self, total: int, already: int):
+        self.total, self.already, self.start = total, already, time.monotonic()
+        self.failed = 0
+
+    def __call__(self, done: int) -> None:
+        elapsed = time.monotonic() - self.start
+        rate = done / elapsed if elapsed > 0 else 0.0
+        left = (self.total - self.already - done) / rate if rate > 0 else float("nan")
+        print(f"  {self.already + done}/{self.total} impacts ({self.failed} failed), "
+              f"{rate * 60:.0f} per minute, {left / 60:.1f} min left", flush=True)
+
+
+def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dict:
+    """Run every impact of the study that is not finished; returns counts."""
+    from .pool import run_jobs
+
+    study.validate()
+    study.folder.mkdir(parents=True, exist_ok=True)
+    (study.folder / "study.json").write_text(json.dumps(asdict(study), indent=1))
+    jobs = study.jobs()
+    if retry_failed:
+        for job in jobs:
+            (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
+    todo = [j for j in jobs if state(j) == "pending"]
+    groups: dict[tuple, list[int]] = {}
+    for index, job in enumerate(todo):
+        groups.setdefault((job["lattice"], job["seed"]), []).append(index)
+    progress = Progress(len(jobs), len(jobs) - len(todo))
+    print(f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
+          f"{len(todo)} to run on {workers} workers", flush=True)
+
+    def failed(index: int, message: str) -> None:
+        progress.failed += 1
+        folder = Path(todo[index]["folder"])
+        log = folder / "log.lammps"
+        errors = [line for line in log.read_text(errors="replace").splitlines()
+                  if line.startswith("ERROR")] if log.exists() else []
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / "failed.json").write_text(json.dumps(
+            {**todo[index], "error": errors[0] if errors else message}, indent=1))
+        print(f"  failed: {todo[index]['lattice']} seed {todo[index]['seed']} gamma "
+              f"{todo[index]['gamma']}: {errors[0] if errors else message}", flush=True)
+
+    run_jobs(lambda job: run_job(study, job), todo, list(groups.values()), workers,
+             on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
+    counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
+    print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
+    return counts
