@@ -78,7 +78,7 @@ class Compliant:
 def _first_root(function, start: float, end: float, samples: int = 400) -> float | None:
     """The first zero of ``function`` in (start, end], by a scan and Brent's method."""
     grid = np.linspace(start, end, samples + 1)
-    values = np.array([function(t) for t in grid])
+    values = np.asarray(function(grid), float)          # the functions take arrays
     # a zero at the very start is the transition just made, not a new one
     for k in range(1, samples + 1):
         if values[k] == 0.0:

@@ -154,8 +154,9 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
         print(f"  failed: {todo[index]['lattice']} seed {todo[index]['seed']} gamma "
               f"{todo[index]['gamma']}: {errors[0] if errors else message}", flush=True)
 
-    run_jobs(lambda job: run_job(study, job), todo, list(groups.values()), workers,
-             on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
+    if todo:
+        run_jobs(lambda job: run_job(study, job), todo, list(groups.values()), workers,
+                 on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
     counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
     print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
     return counts
