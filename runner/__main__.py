@@ -74,6 +74,8 @@ def main(argv: list[str] | None = None) -> int:
     study.add_argument("--workers", type=count(1), default=2, help="worker processes (default: 2)")
     study.add_argument("--partitions", type=count(0), default=0,
                        help="run on this many LAMMPS partitions under mpirun instead of workers")
+    study.add_argument("--batch-size", type=count(1), default=16,
+                       help="with --partitions: impacts per partition in one MPI job (default: 16)")
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
     study.add_argument("--dt", type=positive_float, default=None, help="time step, R/c")
     study.add_argument("--n-disk", type=count(50), default=None, help="points in each disk (default: 800)")
@@ -115,7 +117,7 @@ def run_study_command(args) -> int:
     if not args.report_only:
         if args.partitions:
             from .partitions import run_study_partitions
-            run_study_partitions(study, args.partitions, args.retry_failed)
+            run_study_partitions(study, args.partitions, args.retry_failed, args.batch_size)
         else:
             run_study(study, args.workers, args.retry_failed)
     # the paper's study, whatever its sample count, is the one the docs show

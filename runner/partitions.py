@@ -11,10 +11,12 @@ pending, and the next batch goes on.
 from __future__ import annotations
 
 import json
+import multiprocessing as mp
 import re
 import shutil
 import subprocess
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
@@ -34,15 +36,21 @@ def finished(folder: Path) -> bool:
     return energy.exists() and len(energy.read_text().splitlines()) == 3
 
 
-def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> int:
-    """Run ``jobs`` on the partitions; return how many finished or failed."""
-    shutil.rmtree(batch, ignore_errors=True)
-    batch.mkdir(parents=True)
-    for k, job in enumerate(jobs, start=1):
+def build_scenes(study: Study, jobs: list[dict]) -> None:
+    """Write the scenes of ``jobs`` into their folders."""
+    for job in jobs:
         folder = Path(job["folder"])
         shutil.rmtree(folder, ignore_errors=True)
         write_scene(build_scene(study.spec(job)), folder, study.options.springs)
-        (batch / str(k)).symlink_to(folder.resolve())
+
+
+def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> int:
+    """Run ``jobs``, whose scenes are built, on the partitions; return how many
+    finished or failed."""
+    shutil.rmtree(batch, ignore_errors=True)
+    batch.mkdir(parents=True)
+    for k, job in enumerate(jobs, start=1):
+        (batch / str(k)).symlink_to(Path(job["folder"]).resolve())
     partitions = min(partitions, len(jobs))      # a universe loop needs a job per partition
     variables = study.options.deck_variables()
     command = mpi_launcher(partitions) + ["lmp", "-partition", f"{partitions}x1",
@@ -100,16 +108,23 @@ def run_study_partitions(study: Study, partitions: int, retry_failed: bool = Fal
             (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
     start = time.monotonic()
     before = sum(state(j) != "pending" for j in jobs)
-    while True:
-        todo = [j for j in jobs if state(j) == "pending"]
-        if not todo:
-            break
-        done = len(jobs) - len(todo)
-        rate = (done - before) / (time.monotonic() - start) if done > before else 0.0
-        print(f"  {done}/{len(jobs)} impacts, {len(todo)} to run on {partitions} partitions"
-              + (f", {rate * 60:.0f} per minute, {len(todo) / rate / 60:.1f} min left"
-                 if rate else ""), flush=True)
-        run_batch(study, todo[:batch_size * partitions], partitions, study.folder / ".batch")
+    size = batch_size * partitions
+    # The next batch's scenes are built while LAMMPS runs this one.
+    with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("fork")) as builder:
+        while todo := [j for j in jobs if state(j) == "pending"]:
+            batches = [todo[i:i + size] for i in range(0, len(todo), size)]
+            building = builder.submit(build_scenes, study, batches[0])
+            for k, batch in enumerate(batches):
+                building.result()
+                if k + 1 < len(batches):
+                    building = builder.submit(build_scenes, study, batches[k + 1])
+                done = sum(state(j) != "pending" for j in jobs)
+                rate = (done - before) / (time.monotonic() - start) if done > before else 0.0
+                left = len(jobs) - done
+                print(f"  {done}/{len(jobs)} impacts, {left} to run on {partitions} partitions"
+                      + (f", {rate * 60:.0f} per minute, {left / rate / 60:.1f} min left"
+                         if rate else ""), flush=True)
+                run_batch(study, batch, partitions, study.folder / ".batch")
     counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
     print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
     return counts

@@ -64,7 +64,7 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
 def test_two_partitions_give_the_serial_results(uninterrupted):
     name = "test_study_partitions"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
-    proc = study(name, "--partitions", "2")
+    proc = study(name, "--partitions", "2", "--batch-size", "1")   # 3 MPI jobs, built ahead
     assert proc.returncode == 0, proc.stderr
     assert table(name) == uninterrupted
 
