@@ -58,6 +58,9 @@ def read_data(path: Path | str) -> System:
         v[vel[:, 0].astype(int) - 1] = vel[:, 1:3]
     coeffs = np.array([r.split() for r in sections["Bond Coeffs"]], float)
     coeffs = coeffs[np.argsort(coeffs[:, 0])]
+    if coeffs.shape[1] == 3:                # harmonic: K r0, i.e. class2 with K3 = K4 = 0
+        zero = np.zeros(len(coeffs))
+        coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 2], coeffs[:, 1], zero, zero])
     bonds = np.array([r.split() for r in sections["Bonds"]], int)
     kind = bonds[:, 1] - 1
     return System(x=atoms[:, 3:5].copy(), v=v, mass=np.array([masses[t] for t in types]),

@@ -84,3 +84,16 @@ def test_mdanalysis_reads_the_same(small_scene_dir, small_scene):
     assert len(pairs) == len(expected) and set(pairs) == set(expected)
     # float32 positions of size ~4 carry ~5e-7 of rounding each
     assert np.allclose(u.bonds.values(), [expected[p] for p in pairs], rtol=0, atol=2e-6)
+
+
+def test_reference_reader_takes_both_spring_styles(small_scene, tmp_path):
+    """harmonic K r0 is class2 r0 K2 K3 K4 with K3 = K4 = 0 (the stop rule and
+    the reference read either)."""
+    from builder.lammps_data import write_scene
+    from reference.data import read_data
+
+    quartic = read_data(write_scene(small_scene, tmp_path / "class2", "class2") / "scene.data")
+    harmonic = read_data(write_scene(small_scene, tmp_path / "harmonic", "harmonic") / "scene.data")
+    assert np.array_equal(harmonic.r0, quartic.r0) and np.array_equal(harmonic.k2, quartic.k2)
+    assert np.array_equal(harmonic.bonds, quartic.bonds) and np.array_equal(harmonic.x, quartic.x)
+    assert np.all(harmonic.k4 == 0) and np.all(quartic.k4 > 0)
