@@ -77,3 +77,10 @@ def bootstrap(groups: list[np.ndarray], fit, resamples: int = 200,
         resampled = [g[rng.integers(0, len(g), len(g))] for g in groups]
         draws.append(fit(means(resampled)))
     return best, np.std(draws, axis=0, ddof=1)
+
+
+def reduced_chi2(data: Means, model_beta: np.ndarray, parameters: int) -> float:
+    """Weighted squared residuals per degree of freedom: about 1 if the model
+    describes the means within their standard errors."""
+    residuals = (np.asarray(model_beta) - data.beta) / data.beta_se
+    return float(np.sum(residuals ** 2) / max(len(residuals) - parameters, 1))

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from . import figures
-from .fits import bootstrap, fit_compliant, fit_walton
+from .fits import bootstrap, fit_compliant, fit_walton, means, reduced_chi2
+from .theory import Compliant, compliant_beta, walton_beta
 from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, write_csv
 
 
@@ -24,12 +25,16 @@ def fit_all(rows: list[dict], resamples: int = 200) -> dict:
         nu = float(next(r["nu"] for r in rows if r["study_lattice"] == lattice))
         K = 1.0 + 1.0 / inertia
         (mu, beta0), (mu_sd, beta0_sd) = bootstrap(data, lambda d: fit_walton(d, K), resamples)
+        m = means(data)
         fits[lattice] = {"walton": {"mu": mu, "mu_sd": mu_sd, "beta0": beta0, "beta0_sd": beta0_sd,
-                                    "K": K}, "nu": nu, "inertia_ratio": inertia}
+                                    "K": K, "chi2": reduced_chi2(m, walton_beta(m.psi, m.e, mu, beta0, K), 2)},
+                         "nu": nu, "inertia_ratio": inertia}
         if lattice == "random":
             (mu_c,), (mu_c_sd,) = bootstrap(data, lambda d: fit_compliant(d, nu, K),
                                             max(20, resamples // 10))
-            fits[lattice]["compliant"] = {"mu": mu_c, "mu_sd": mu_c_sd, "nu": nu, "alpha": K}
+            curve = [compliant_beta(p, Compliant(e=e, mu=mu_c, nu=nu, alpha=K)) for p, e in zip(m.psi, m.e)]
+            fits[lattice]["compliant"] = {"mu": mu_c, "mu_sd": mu_c_sd, "nu": nu, "alpha": K,
+                                          "chi2": reduced_chi2(m, curve, 1)}
     return json.loads(json.dumps(fits, default=float))
 
 
@@ -63,18 +68,23 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
              f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
              f"--n-disk {study['n_disk']}`.", "",
              "## Fitted parameters", "",
-             "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | compliant mu |", "|---|---|---|---|---|---|"]
+             "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | Walton chi2/dof | compliant mu "
+             "| compliant chi2/dof |", "|---|---|---|---|---|---|---|---|"]
     for lattice, fit in fits.items():
         walton = fit["walton"]
         compliant = fit.get("compliant")
-        compliant_mu = f"{compliant['mu']:.3f} +- {compliant['mu_sd']:.3f}" if compliant else "-"
+        compliant_mu = (f"{compliant['mu']:.3f} +- {compliant['mu_sd']:.3f} | {compliant['chi2']:.1f}"
+                        if compliant else "- | -")
         lines.append(f"| {lattice} | {fit['nu']:.3f} | {fit['inertia_ratio']:.4f} "
                      f"| {walton['mu']:.3f} +- {walton['mu_sd']:.3f} "
-                     f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {compliant_mu} |")
+                     f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {walton['chi2']:.1f} "
+                     f"| {compliant_mu} |")
     lines += ["", "Uncertainties: standard deviations of the fits to bootstrap resamples of the "
               "samples at each angle. Walton's e is the measured mean e at each angle; K = 1 + "
               "MR^2/I from the measured inertia. The compliant model takes nu from the "
-              "calibration (docs/materials.md).", "", "## Does beta0 depend on the Poisson ratio?", "",
+              "calibration (docs/materials.md). chi2/dof: the fit's weighted squared residuals "
+              "per degree of freedom against the means per angle; about 1 if the model "
+              "describes the data within its standard errors, well above 1 if it does not.", "", "## Does beta0 depend on the Poisson ratio?", "",
               beta0_question(fits), "", "## Figures", ""]
     for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
                         ("e", "e against cot gamma"),
