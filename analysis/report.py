@@ -38,6 +38,19 @@ def fit_all(rows: list[dict], resamples: int = 200) -> dict:
     return json.loads(json.dumps(fits, default=float))
 
 
+def model_verdicts(fits: dict) -> list[str]:
+    """Which models describe which lattice's beta(psi), by chi2/dof (2: the line drawn)."""
+    lines = []
+    for lattice, fit in fits.items():
+        for name, label in (("walton", "Walton's model"), ("compliant", "The compliant model")):
+            if name in fit:
+                chi2 = fit[name]["chi2"]
+                verdict = ("describes" if chi2 <= 2 else
+                           "does not describe, within the standard errors,")
+                lines.append(f"- {label} {verdict} the {lattice} lattice (chi2/dof = {chi2:.1f}).")
+    return lines
+
+
 def beta0_question(fits: dict) -> str:
     """Does beta0 depend on the Poisson ratio? The square lattices differ only in it."""
     a, b = fits.get("square_nu0.1"), fits.get("square_nu0.3")
@@ -84,7 +97,8 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
               "MR^2/I from the measured inertia. The compliant model takes nu from the "
               "calibration (docs/materials.md). chi2/dof: the fit's weighted squared residuals "
               "per degree of freedom against the means per angle; about 1 if the model "
-              "describes the data within its standard errors, well above 1 if it does not.", "", "## Does beta0 depend on the Poisson ratio?", "",
+              "describes the data within its standard errors, well above 1 if it does not.", "",
+              *model_verdicts(fits), "", "## Does beta0 depend on the Poisson ratio?", "",
               beta0_question(fits), "", "## Figures", ""]
     for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
                         ("e", "e against cot gamma"),
