@@ -3,7 +3,7 @@
     make bench-impact        (or: python bench/impact_speed.py --repeats 3)
 
 Each configuration runs the whole default impact (random lattice, seed 1,
-45 degrees, segment contact, dt 1e-3) several times; the table gives medians
+45 degrees, segment contact, the default dt) several times; the table gives medians
 of the steps per second inside LAMMPS's run loops and of the wall time of the
 whole impact (start of lmp to result).
 """
