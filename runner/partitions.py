@@ -10,22 +10,17 @@ pending, and the next batch goes on.
 
 from __future__ import annotations
 
-import json
 import multiprocessing as mp
-import re
 import shutil
 import subprocess
-import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
-from builder.lammps_data import write_scene
-from builder.scene import build_scene
 
 from .impact import git_revision
-from .lammps_run import ROOT, LammpsError, lammps_version, mpi_environment, mpi_launcher
-from .study import KEEP, Study, state
+from .lammps_run import ROOT, LammpsError, lammps_error, lammps_version, mpi_environment, mpi_launcher
+from .study import Progress, Study, mark_failed, prune, state
 
 SWEEP = ROOT / "decks" / "sweep.lmp"
 
@@ -37,11 +32,8 @@ def finished(folder: Path) -> bool:
 
 
 def build_scenes(study: Study, jobs: list[dict]) -> None:
-    """Write the scenes of ``jobs`` into their folders."""
     for job in jobs:
-        folder = Path(job["folder"])
-        shutil.rmtree(folder, ignore_errors=True)
-        write_scene(build_scene(study.spec(job)), folder, study.options.springs)
+        study.build(job)
 
 
 def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> int:
@@ -64,8 +56,7 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
     (ROOT / "tmp.lammps.variable").unlink(missing_ok=True)    # the universe loop's counter
     logs = sorted(batch.glob("log.*"))
     version = lammps_version(logs[0]) if logs else "unknown"
-    errors = [line for log in logs for line in log.read_text(errors="replace").splitlines()
-              if line.startswith("ERROR")]
+    errors = [e for e in (lammps_error(log, "") for log in logs) if e]
     settled = 0
     for job in jobs:
         folder = Path(job["folder"])
@@ -77,15 +68,9 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
                    "partitions": partitions}
             write_json_atomically(run, folder / "run.json")
             write_json_atomically(analyse_run(folder), folder / "result.json")
-            for path in folder.iterdir():
-                if path.name not in KEEP:
-                    path.unlink()
+            prune(folder)
         elif (folder / "series.dat").exists():        # it was running when the job ended
-            message = re.sub(r"\s*\([^()]*\.cpp:\d+\)\s*$", "", errors[0]) if errors else \
-                "the MPI job ended during this impact"
-            (folder / "failed.json").write_text(json.dumps({**job, "error": message}, indent=1))
-            print(f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}",
-                  flush=True)
+            mark_failed(job, errors[0] if errors else "the MPI job ended during this impact")
         else:                                         # never started: next batch
             shutil.rmtree(folder, ignore_errors=True)
     if not settled:
@@ -98,16 +83,8 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
 def run_study_partitions(study: Study, partitions: int, retry_failed: bool = False,
                          batch_size: int = 16) -> dict:
     """Run every unfinished impact of the study on ``partitions`` LAMMPS partitions."""
-    study.validate()
-    study.folder.mkdir(parents=True, exist_ok=True)
-    from dataclasses import asdict
-    (study.folder / "study.json").write_text(json.dumps(asdict(study), indent=1))
-    jobs = study.jobs()
-    if retry_failed:
-        for job in jobs:
-            (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
-    start = time.monotonic()
-    before = sum(state(j) != "pending" for j in jobs)
+    jobs = study.prepare(retry_failed)
+    progress = Progress(len(jobs), sum(state(j) != "pending" for j in jobs))
     size = batch_size * partitions
     # The next batch's scenes are built while LAMMPS runs this one.
     with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("fork")) as builder:
@@ -118,13 +95,7 @@ def run_study_partitions(study: Study, partitions: int, retry_failed: bool = Fal
                 building.result()
                 if k + 1 < len(batches):
                     building = builder.submit(build_scenes, study, batches[k + 1])
-                done = sum(state(j) != "pending" for j in jobs)
-                rate = (done - before) / (time.monotonic() - start) if done > before else 0.0
-                left = len(jobs) - done
-                print(f"  {done}/{len(jobs)} impacts, {left} to run on {partitions} partitions"
-                      + (f", {rate * 60:.0f} per minute, {left / rate / 60:.1f} min left"
-                         if rate else ""), flush=True)
                 run_batch(study, batch, partitions, study.folder / ".batch")
-    counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
-    print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
-    return counts
+                progress.failed = sum(state(j) == "failed" for j in jobs)
+                progress(sum(state(j) != "pending" for j in jobs) - progress.already)
+    return study.summary(jobs)

@@ -16,11 +16,13 @@ from pathlib import Path
 
 import numpy as np
 
+from analysis.result import write_json_atomically
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene
 
 from .impact import run_scene
+from .lammps_run import lammps_error
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -79,6 +81,29 @@ class Study:
         return SceneSpec(seed=job["seed"], gamma_deg=job["gamma"], vn=self.vn, n_disk=self.n_disk,
                          **LATTICES[job["lattice"]])
 
+    def prepare(self, retry_failed: bool = False) -> list[dict]:
+        """Check the study, record it in its folder, and return its jobs."""
+        self.validate()
+        self.folder.mkdir(parents=True, exist_ok=True)
+        (self.folder / "study.json").write_text(json.dumps(asdict(self), indent=1))
+        jobs = self.jobs()
+        if retry_failed:
+            for job in jobs:
+                (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
+        return jobs
+
+    def build(self, job: dict) -> Path:
+        """The job's scene, written afresh into its folder (an impact killed
+        half-way starts over)."""
+        folder = Path(job["folder"])
+        shutil.rmtree(folder, ignore_errors=True)
+        return write_scene(build_scene(self.spec(job)), folder, self.options.springs)
+
+    def summary(self, jobs: list[dict]) -> dict:
+        counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
+        print(f"study {self.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
+        return counts
+
 
 PRESETS = {
     "paper": Study("paper"),
@@ -95,16 +120,25 @@ def state(job: dict) -> str:
     return "pending"
 
 
-def run_job(study: Study, job: dict) -> dict:
-    """Build and run one impact, keep only the small files; a worker calls this."""
-    folder = Path(job["folder"])
-    if folder.exists():                    # an impact killed half-way starts over
-        shutil.rmtree(folder)
-    write_scene(build_scene(study.spec(job)), folder, study.options.springs)
-    result = run_scene(folder, study.options)
+def prune(folder: Path) -> None:
+    """Keep only the small files of a finished impact."""
     for path in folder.iterdir():
         if path.name not in KEEP:
             path.unlink()
+
+
+def mark_failed(job: dict, message: str) -> None:
+    folder = Path(job["folder"])
+    folder.mkdir(parents=True, exist_ok=True)
+    write_json_atomically({**job, "error": message}, folder / "failed.json")
+    print(f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}", flush=True)
+
+
+def run_job(study: Study, job: dict) -> dict:
+    """Build and run one impact, keep only the small files; a worker calls this."""
+    folder = study.build(job)
+    result = run_scene(folder, study.options)
+    prune(folder)
     return {"e": result["e"], "beta": result["beta"], "steps": result["steps"]}
 
 
@@ -127,13 +161,7 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
     """Run every impact of the study that is not finished; returns counts."""
     from .pool import run_jobs
 
-    study.validate()
-    study.folder.mkdir(parents=True, exist_ok=True)
-    (study.folder / "study.json").write_text(json.dumps(asdict(study), indent=1))
-    jobs = study.jobs()
-    if retry_failed:
-        for job in jobs:
-            (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
+    jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
     groups: dict[tuple, list[int]] = {}
     for index, job in enumerate(todo):
@@ -144,19 +172,10 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
 
     def failed(index: int, message: str) -> None:
         progress.failed += 1
-        folder = Path(todo[index]["folder"])
-        log = folder / "log.lammps"
-        errors = [line for line in log.read_text(errors="replace").splitlines()
-                  if line.startswith("ERROR")] if log.exists() else []
-        folder.mkdir(parents=True, exist_ok=True)
-        (folder / "failed.json").write_text(json.dumps(
-            {**todo[index], "error": errors[0] if errors else message}, indent=1))
-        print(f"  failed: {todo[index]['lattice']} seed {todo[index]['seed']} gamma "
-              f"{todo[index]['gamma']}: {errors[0] if errors else message}", flush=True)
+        job = todo[index]
+        mark_failed(job, lammps_error(Path(job["folder"]) / "log.lammps", message))
 
     if todo:
         run_jobs(lambda job: run_job(study, job), todo, list(groups.values()), workers,
                  on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
-    counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
-    print(f"study {study.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
-    return counts
+    return study.summary(jobs)
