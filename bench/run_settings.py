@@ -11,16 +11,15 @@ order (neighbour lists) moves e and beta a little: they are shown too.
 from __future__ import annotations
 
 import argparse
-import subprocess
+import json
 import tempfile
 from pathlib import Path
 
-from common import ROOT, loop_seconds, markdown_table, median, write_report
+from common import loop_seconds, markdown_table, median, write_report
 
-from analysis.result import analyse_run
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import command_line
+from runner.impact import run_scene
 from runner.options import RunOptions
 
 DEFAULT = RunOptions()
@@ -37,24 +36,15 @@ SETTINGS = {
 
 
 def run(folder: Path, changes: dict[str, str]) -> dict:
-    variables = {"scene": str(folder), "out": str(folder), **DEFAULT.deck_variables()}
     changes = dict(changes)
     skin_factor = changes.pop("skin_factor", None)
     if skin_factor:
-        spacing = float((folder / "scene.lmp").read_text().split("variable skin")[1].split()[1]) * 2
+        spacing = json.loads((folder / "scene.json").read_text())["wall_spacing"]
         changes["skin"] = repr(float(skin_factor) * spacing)
-    variables.update(changes)
-    log = folder / "log.lammps"
-    import time
-    start = time.perf_counter()
-    subprocess.run(["lmp"] + command_line(variables, log), cwd=ROOT, check=True, capture_output=True)
-    seconds = time.perf_counter() - start
-    (folder / "run.json").write_text(
-        '{"options": ' + __import__("json").dumps(DEFAULT.as_dict()) +
-        f', "wall_seconds": {seconds}, "lammps_version": "x", "git_revision": "x"}}')
-    result = analyse_run(folder)
-    loop, steps = loop_seconds(log)
-    return {"seconds": seconds, "loop": loop, "steps": steps, "e": result["e"], "beta": result["beta"]}
+    result = run_scene(folder, DEFAULT, changes)
+    loop, steps = loop_seconds(folder / "log.lammps")
+    return {"seconds": result["wall_seconds"], "loop": loop, "steps": steps, "e": result["e"],
+            "beta": result["beta"]}
 
 
 def main() -> None:

@@ -12,8 +12,6 @@ Writes docs/benchmarks/stability.md.
 
 from __future__ import annotations
 
-import json
-import subprocess
 import tempfile
 from pathlib import Path
 
@@ -27,7 +25,7 @@ from builder.materials import square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene
 from reference.data import read_data
 from runner.impact import run_scene
-from runner.lammps_run import ROOT, LammpsError, command_line, mpi_environment
+from runner.lammps_run import LammpsError
 from runner.options import RunOptions
 
 STEPS = (2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2, 2.4e-2, 3.2e-2)
@@ -80,12 +78,9 @@ def spring_strain(folder: Path) -> float:
 
 def long_run(tmp: Path, dt: float) -> list[str]:
     folder = write_scene(build_scene(SceneSpec(gamma_deg=80.5)), tmp / "long")
-    options = RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=100)
     # early_stop no: the deck runs on to tmax after the disk has left
-    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables(),
-                 "early_stop": "no"}
-    subprocess.run(["lmp"] + command_line(variables, folder / "log.lammps"), cwd=ROOT, check=True,
-                   capture_output=True, env=mpi_environment())
+    run_scene(folder, RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=100),
+              {"early_stop": "no"})
     energies = read_energies(folder / "energy.dat")
     total = [sum(row[k] for k in ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact"))
              for row in energies]

@@ -15,8 +15,6 @@ import argparse
 import tempfile
 from pathlib import Path
 
-import numpy as np
-
 from common import markdown_table, median, write_report
 
 from analysis.series import read_series
@@ -35,28 +33,7 @@ LONG = 100.0
 
 def long_run(folder: Path) -> dict:
     """The impact continued to t = LONG whatever happens (the deck's early_stop no)."""
-    from runner.lammps_run import run_lmp
-    import json
-    options = RunOptions(tmax=LONG)
-    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables(),
-                 "early_stop": "no"}
-    seconds = run_lmp(variables, folder / "log.lammps")
-    (folder / "run.json").write_text(json.dumps({"options": options.as_dict(), "wall_seconds": seconds,
-                                                 "lammps_version": "x", "git_revision": "x"}))
-    from analysis.result import analyse_run
-    return analyse_run(folder)
-
-
-def run_predictive(folder: Path, extra_vars: dict) -> dict:
-    from runner.lammps_run import run_lmp
-    import json
-    options = RunOptions()
-    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables(), **extra_vars}
-    seconds = run_lmp(variables, folder / "log.lammps")
-    (folder / "run.json").write_text(json.dumps({"options": options.as_dict(), "wall_seconds": seconds,
-                                                 "lammps_version": "x", "git_revision": "x"}))
-    from analysis.result import analyse_run
-    return analyse_run(folder)
+    return run_scene(folder, RunOptions(tmax=LONG), {"early_stop": "no"})
 
 
 def main() -> None:
@@ -73,12 +50,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for name, extra in LATTICES.items():
             lattice = name.split()[0]
-            steps, long_steps, misses, worst = [], [], 0, 0.0
+            steps, misses, worst = [], 0, 0.0
             for seed in range(1, args.seeds + 1):
                 for gamma in ANGLES:
                     scene = build_scene(SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra))
                     tag = f"{lattice}{extra.get('k2_over_k1', '')}_{seed}_{gamma}"
-                    stopped = run_predictive(write_scene(scene, Path(tmp) / f"{tag}_p"), extra_vars)
+                    stopped = run_scene(write_scene(scene, Path(tmp) / f"{tag}_p"), RunOptions(),
+                                        extra_vars)
                     folder = write_scene(scene, Path(tmp) / f"{tag}_long")
                     full = long_run(folder)
                     series = read_series(folder / "series.dat")

@@ -32,11 +32,14 @@ def git_revision() -> str:
         return "unknown"
 
 
-def run_scene(folder: Path | str, options: RunOptions) -> dict:
+def run_scene(folder: Path | str, options: RunOptions,
+              deck_overrides: dict[str, str] | None = None) -> dict:
     """Run the scene in ``folder`` (scene.data, scene.lmp, scene.json) and analyse it.
 
     Outputs go into the same folder; result.json is written last and
     atomically, and only if the run finished and every number is finite.
+    ``deck_overrides`` sets deck variables that are not run options (the
+    benchmarks' early_stop, stop_slack, ...); run.json records them.
     """
     options.validate()
     folder = Path(folder).resolve()
@@ -55,14 +58,16 @@ def run_scene(folder: Path | str, options: RunOptions) -> dict:
 
     variables = {"scene": str(folder), "out": str(folder)}
     variables.update(options.deck_variables())
+    variables.update(deck_overrides or {})
     log = folder / "log.lammps"
     if options.route == "lmp":
         seconds = run_lmp(variables, log, options.nprocs)
     else:
         seconds = run_python(variables, log)
 
-    run = {"options": options.as_dict(), "wall_seconds": seconds,
-           "lammps_version": lammps_version(log), "git_revision": git_revision()}
+    run = {"options": options.as_dict(), "deck_overrides": deck_overrides or {},
+           "wall_seconds": seconds, "lammps_version": lammps_version(log),
+           "git_revision": git_revision()}
     write_json_atomically(run, folder / "run.json")
     result = analyse_run(folder)
     bad = [k for k, v in result.items() if isinstance(v, float) and not math.isfinite(v)]
