@@ -13,9 +13,6 @@ COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "
            "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
            "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
            "contact", "stop_rule", "lammps_version", "git_revision")
-NUMERIC = ("seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega", "contact_time",
-           "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt")
 MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
                 "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
                 "vibration_disk", "vibration_wall", "disk_inertia_ratio")
@@ -35,16 +32,6 @@ def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
         writer.writeheader()
         writer.writerows(rows)
     tmp.replace(path)
-
-
-def read_csv(path: Path | str) -> list[dict]:
-    with Path(path).open(newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    for r in rows:
-        for name in NUMERIC:
-            if name in r and r[name] not in ("", None):
-                r[name] = float(r[name])
-    return rows
 
 
 def collect(folders: list[tuple[str, Path]]) -> list[dict]:

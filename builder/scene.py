@@ -12,7 +12,7 @@ from functools import lru_cache
 import numpy as np
 
 from . import bodies
-from .bodies import FIXED, INTERIOR, SURFACE, Body
+from .bodies import SURFACE, Body
 from .errors import (InputError, require_choice, require_nonnegative, require_positive)
 from .geometry import distance_to_polyline
 from .materials import spring_constant

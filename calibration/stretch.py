@@ -104,7 +104,6 @@ def bulk_density(spec: StripSpec) -> float:
 
 
 def read_stretch(spec: StripSpec, folder: Path) -> Stretch:
-    text = (folder / "stretch.dat").read_text()
     table = np.loadtxt(folder / "stretch.dat", comments="#")
     _, _, left, right, length, width, inner_length, inner_width, sxx, _, ke = table.T
     total_atoms = int(re.search(r"(\d+) atoms", (folder / "strip.data").read_text()).group(1))

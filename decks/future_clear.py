@@ -18,9 +18,11 @@ _rest = {}
 
 
 def rest_state(path):
-    """Positions at rest, from the scene's data file (read once)."""
+    """Positions at rest and the disk's centre, from the scene's data file (read once)."""
     if path not in _rest:
-        _rest[path] = read_data(path)
+        rest = read_data(path)
+        disk = rest.molecule == DISK_MOLECULE
+        _rest[path] = rest, rest.mass[disk] @ rest.x[disk] / rest.mass[disk].sum()
     return _rest[path]
 
 
@@ -40,9 +42,7 @@ def future_clear(handle, cutoff, slack, vibration, first, last, data):
     r, u = x[disk] - centre, v[disk] - velocity
     omega = np.sum(m * (r[:, 0] * u[:, 1] - r[:, 1] * u[:, 0])) / np.sum(m * (r * r).sum(axis=1))
     on_surface = disk & (types == DISK_SURFACE)
-    rest = rest_state(data)
-    rest_disk = rest.molecule == DISK_MOLECULE
-    rest_centre = rest.mass[rest_disk] @ rest.x[rest_disk] / rest.mass[rest_disk].sum()
+    rest, rest_centre = rest_state(data)
     row = slice(first - 1, last)
     margin = slack + vibration * (
         disk_vibration(rest.x[on_surface], rest_centre, x[on_surface], v[on_surface], centre, velocity)

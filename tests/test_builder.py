@@ -13,7 +13,7 @@ from builder import bodies
 from builder.bodies import FIXED, SURFACE
 from builder.errors import InputError
 from builder.geometry import distance_to_polyline
-from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
+from builder.scene import DISK, SceneSpec, build_scene
 
 from conftest import ROOT, SMALL
 
