@@ -23,12 +23,13 @@ from common import ROOT, markdown_table, median, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
-from runner.demo import DEMO_ANGLES
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
 
 CONTACTS = ("none", "pair", "segment")
+# Four angles across the study's range, grazing to near head-on.
+ANGLES = (5.7, 26.6, 55.0, 80.4)
 
 
 def timed_run(scene: Path, contact: str, steps: int) -> dict[str, float]:
@@ -66,7 +67,7 @@ def restitution_table(tmp: Path, seeds: int) -> str:
     rows = []
     for vn in (0.1, 0.01):
         for seed in range(1, seeds + 1):
-            for gamma in DEMO_ANGLES:
+            for gamma in ANGLES:
                 scene = build_scene(SceneSpec(seed=seed, gamma_deg=gamma, vn=vn))
                 cells = []
                 for contact in ("segment", "pair"):

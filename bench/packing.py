@@ -1,0 +1,102 @@
+"""Does packing several scenes side by side into one LAMMPS run pay?
+
+    python bench/packing.py [--repeats 3] [--steps 3000]
+
+The issue's lead for the study's throughput: K copies of one scene in one run
+(LAMMPS's replicate) against K separate runs. Each configuration runs the
+default scene (random lattice, seed 1, 45 degrees) for a fixed number of steps
+with bench/contact_cost.lmp; the table gives the medians, over interleaved
+repeats, of scene-steps per second inside LAMMPS's loop (copies x steps / loop
+time). "2 runs at once" is two single-scene runs started together, one per
+core, which is what the study's two workers do.
+
+The copies run without contact: the segment contact knows one wall polyline,
+and its cost is 3-6 % of a step (docs/benchmarks/contact_cost.md), so it
+cannot change the comparison.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import subprocess
+import tempfile
+from pathlib import Path
+
+from common import ROOT, markdown_table, median, write_report
+
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from runner.lammps_run import mpi_environment, mpi_launcher
+
+SECTIONS = ("Bond", "Neigh", "Modify")
+
+
+def start(scene: Path, copies: int, ranks: int, steps: int, log: Path) -> subprocess.Popen:
+    command = mpi_launcher(ranks) + [
+        "lmp", "-in", "bench/contact_cost.lmp", "-var", "scene", str(scene),
+        "-var", "contact", "none", "-var", "steps", str(steps), "-var", "copies", str(copies),
+        "-log", str(log), "-screen", "none", "-nocite"]
+    return subprocess.Popen(command, cwd=ROOT, env=mpi_environment(),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+
+
+def loop_time(log: Path) -> dict[str, float]:
+    text = log.read_text()
+    out = {"loop": float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1))}
+    for name in SECTIONS:
+        out[name] = float(re.search(rf"^{name}\s*\|\s*[\d.eE+-]+\s*\|\s*([\d.eE+-]+)",
+                                    text, re.M).group(1))
+    return out
+
+
+def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) -> dict:
+    """Scene-steps per second of one way: (label, copies per run, ranks, runs at once)."""
+    _, copies, ranks, runs = way
+    logs = [tmp / f"packing_{copies}_{ranks}_{i}.log" for i in range(runs)]
+    procs = [start(scene, copies, ranks, steps, log) for log in logs]
+    for proc in procs:
+        if proc.wait() != 0:
+            raise RuntimeError(f"lmp failed: {proc.stderr.read().strip()[-300:]}")
+    times = [loop_time(log) for log in logs]
+    rate = sum(copies * steps / t["loop"] for t in times)
+    shares = {name: times[0][name] / times[0]["loop"] for name in SECTIONS}
+    return {"rate": rate, **shares}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--steps", type=int, default=3000)
+    args = parser.parse_args()
+
+    ways = [("1 scene, 1 rank", 1, 1, 1), ("2 runs at once, 1 rank each", 1, 1, 2),
+            ("2 scenes packed, 1 rank", 2, 1, 1), ("8 scenes packed, 1 rank", 8, 1, 1),
+            ("2 scenes packed, 2 ranks", 2, 2, 1), ("8 scenes packed, 2 ranks", 8, 2, 1)]
+    scene = build_scene(SceneSpec(gamma_deg=45.0))
+    samples: dict[str, list[dict]] = {way[0]: [] for way in ways}
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = write_scene(scene, Path(tmp) / "scene")
+        for _ in range(args.repeats):
+            for way in ways:
+                samples[way[0]].append(measure(folder, way, args.steps, Path(tmp)))
+                print(way[0], f"{samples[way[0]][-1]['rate']:,.0f}", flush=True)
+
+    base = median([s["rate"] for s in samples[ways[0][0]]])
+    rows = []
+    for way in ways:
+        runs = samples[way[0]]
+        rate = median([s["rate"] for s in runs])
+        rows.append([way[0], str(way[1] * way[3]), f"{rate:,.0f}", f"{rate / base:.2f}"]
+                    + [f"{median([s[name] for s in runs]) * 100:.0f}" for name in SECTIONS])
+    body = (f"Default scene ({scene.info['n_atoms']} atoms, {scene.info['n_springs']} springs), "
+            f"{args.steps} steps without contact, medians of {args.repeats} interleaved repeats.\n\n"
+            + markdown_table(["way", "scenes", "scene-steps/s", "vs 1 scene",
+                              "Bond % of loop", "Neigh %", "Modify (nve) %"], rows))
+    print(body)
+    command = f"python bench/packing.py --repeats {args.repeats} --steps {args.steps}"
+    print(f"wrote {write_report('packing', 'Packing scenes into one run', command, body)}")
+
+
+if __name__ == "__main__":
+    main()
