@@ -12,6 +12,7 @@ Writes docs/benchmarks/stability.md.
 
 from __future__ import annotations
 
+import argparse
 import tempfile
 from pathlib import Path
 
@@ -89,6 +90,7 @@ def long_run(tmp: Path, dt: float) -> list[str]:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         sweep_rows = sweep(tmp)
