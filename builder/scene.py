@@ -119,20 +119,30 @@ class Scene:
 def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
     """The disk and the wall of a sample, in units of R; independent of the angle.
 
-    Cached, because a sweep builds the same sample for every angle.
+    Cached, because a sweep builds the same sample for every angle, and the
+    wall, which depends on the seed only, for every lattice of that seed.
     """
-    return _bodies(spec.lattice, spec.seed, spec.n_disk, spec.wall_points, spec.roughness,
-                   spec.k2_over_k1, spec.wall_fixed, spec.wall_width, spec.wall_height)
+    return (_disk(spec.lattice, spec.seed, spec.n_disk, spec.roughness, spec.k2_over_k1),
+            _wall(spec.seed, spec.wall_points, spec.wall_width, spec.wall_height, spec.roughness,
+                  spec.wall_fixed))
+
+
+def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, np.random.SeedSequence]:
+    """Independent streams for the disk and the wall of one sample."""
+    disk_seed, wall_seed = np.random.SeedSequence(seed).spawn(2)
+    return disk_seed, wall_seed
 
 
 @lru_cache(maxsize=8)
-def _bodies(lattice, seed, n_disk, n_wall, roughness, k2_over_k1, wall_fixed, width, height):
-    disk_seed, wall_seed = np.random.SeedSequence(seed).spawn(2)
-    disk = bodies.make_disk(np.random.default_rng(disk_seed), lattice, n_disk, roughness,
-                            k2_over_k1)
-    wall = bodies.make_wall(np.random.default_rng(wall_seed), n_wall, width, height,
-                            roughness, wall_fixed)
-    return disk, wall
+def _disk(lattice, seed, n_disk, roughness, k2_over_k1) -> Body:
+    rng = np.random.default_rng(_sample_seeds(seed)[0])
+    return bodies.make_disk(rng, lattice, n_disk, roughness, k2_over_k1)
+
+
+@lru_cache(maxsize=4)
+def _wall(seed, n_wall, width, height, roughness, wall_fixed) -> Body:
+    rng = np.random.default_rng(_sample_seeds(seed)[1])
+    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed)
 
 
 def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndarray,

@@ -163,9 +163,11 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
 
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
-    groups: dict[tuple, list[int]] = {}
+    # One worker takes a whole sample (every lattice and angle of a seed): its
+    # bodies are built once and the wall, shared by the lattices, once for all.
+    groups: dict[int, list[int]] = {}
     for index, job in enumerate(todo):
-        groups.setdefault((job["lattice"], job["seed"]), []).append(index)
+        groups.setdefault(job["seed"], []).append(index)
     progress = Progress(len(jobs), len(jobs) - len(todo))
     print(f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
           f"{len(todo)} to run on {workers} workers", flush=True)
