@@ -73,6 +73,9 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
                         help="square lattice: k2/k1 that gives this Poisson ratio along the axes")
     group.add_argument("--wall-fixed", choices=WALL_FIXED_CHOICES, default="sides",
                        help="which wall points are held fixed (default: sides)")
+    group.add_argument("--contact-a", type=positive_float, default=300.0,
+                       help="decay rate of the contact, a R (default: 300); finer disks need "
+                            "a larger one, 300 * sqrt(n_disk / 800)")
 
 
 def spec_from_args(args: argparse.Namespace):
@@ -84,4 +87,4 @@ def spec_from_args(args: argparse.Namespace):
     return SceneSpec(lattice=args.lattice, seed=args.seed, gamma_deg=args.gamma, vn=args.vn,
                      radius=args.radius, n_disk=args.n_disk, n_wall=args.n_wall,
                      roughness=args.roughness, k2_over_k1=args.k2_over_k1,
-                     wall_fixed=args.wall_fixed)
+                     wall_fixed=args.wall_fixed, contact_a=args.contact_a)

@@ -143,6 +143,7 @@ def test_same_seed_same_files(tmp_path):
     ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
     ("vn", 1.5, "vn must be in (0, 1)"),
     ("wall_fixed", "top", "wall_fixed must be one of"),
+    ("contact_a", 50.0, "contact_a must be >= "),
 ])
 def test_bad_spec(field, value, words):
     with pytest.raises(InputError, match=words.replace("(", r"\(").replace(")", r"\)").replace("[", r"\[")):
@@ -155,6 +156,7 @@ def test_bad_spec(field, value, words):
     (["--gamma", "0"], "argument --gamma: must be in (0, 90) degrees"),
     (["--gamma", "95"], "argument --gamma: must be in (0, 90) degrees"),
     (["--lattice", "hexagonal"], "argument --lattice: invalid choice"),
+    (["--n-disk", "200", "--contact-a", "50"], "contact_a must be >= "),
 ])
 def test_builder_cli_rejects_bad_input(tmp_path, args, words):
     out = tmp_path / "scene"
