@@ -1,21 +1,29 @@
 """A large-resolution disk on several ranks: domain decomposition at scale.
 
-    python bench/large_disk.py [--n-disk 20000] [--ranks 1 2] [--time 1.6]
+    python bench/large_disk.py [--n-disk 20000] [--ranks 1 2] [--time 1.6] [--no-decay-table] [--whole]
 
 A disk of n_disk points (random lattice, 45 degrees, 0.1 c) on a wall at the
 same number density, run by lmp from the start of the approach into the
-contact (to t = --time R/c; a whole impact of a 20,000-point disk takes
-about 50,000 steps, a quarter of an hour here) on each number of ranks. The
-time step must shrink more than the spacing: every point has unit mass, so
-a finer disk is heavier, its points press deeper into the exponential
-contact, and the contact, not the springs, sets the limit (at dt = 4e-3 *
-sqrt(800 / n_disk) = 8e-4 the total energy of a 20,000-point impact grew by
-46 % by t = 1.6). The roughness shrinks with the spacing, 0.03 R * sqrt(800 / n_disk), the
-same in spacings as the study's: the model's 0.03 R is over two spacings of a
-20,000-point disk, too rough for its surface row (the builder refuses it).
-The table gives the loop's steps per second and the disk's energies at the
-end, which must agree between rank counts up to the round-off that domain
-decomposition reorders.
+contact (to t = --time R/c) on each number of ranks. Two of the study's
+settings are kept in units of the spacing, which shrinks as sqrt(800 / n_disk):
+the roughness, 0.03 R * sqrt(800 / n_disk) (the model's 0.03 R is over two
+spacings of a 20,000-point disk, too rough for its surface row: the builder
+refuses it), and the contact's decay rate, a R = 300 * sqrt(n_disk / 800), so
+that the exponential dies out within the cutoff (the spacing) as in the study
+(at a R = 300 a 20,000-point disk has 4 decay lengths in the cutoff and its
+energy grew by 46 % by t = 1.6; the builder refuses it). The time step scales
+with the spacing too: 4e-3 * sqrt(800 / n_disk). The table gives the loop's
+steps per second, the disk's energies at the end, which must agree between
+rank counts up to the round-off that domain decomposition reorders, and the
+change of the total energy.
+
+--whole also runs the whole impact, on the largest number of ranks, with the
+study's stop rule, and gives e, beta and what it took.
+
+A further table runs 1 rank with the decay rate left at the study's a R = 300
+(passed to the deck, past the builder's check) and at the scaled one, at two
+time steps each: what the builder's check prevents, and that it is not cured
+by a smaller step. --no-decay-table leaves it out.
 """
 
 from __future__ import annotations
@@ -29,8 +37,30 @@ from common import ROOT, loop_seconds, markdown_table, write_report
 from analysis.series import read_energies
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
+from runner.impact import run_scene
 from runner.lammps_run import run_lmp
 from runner.options import RunOptions
+
+
+ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")
+
+
+def run(scene, name: str, dt: float, ranks: int, until: float, deck: dict | None = None) -> dict:
+    """Run the scene into the contact; steps/s, the energies at the end and the
+    change of the total energy. ``deck`` overrides the scene's own settings."""
+    folder = ROOT / "runs" / "bench" / name
+    shutil.rmtree(folder, ignore_errors=True)
+    write_scene(scene, folder, "class2")
+    # early_stop no: run to tmax whatever the contact does
+    variables = {"scene": str(folder), "out": str(folder),
+                 **RunOptions(dt=dt, tmax=until, every=100).deck_variables(),
+                 "early_stop": "no", **(deck or {})}
+    wall = run_lmp(variables, folder / "log.lammps", ranks)
+    seconds, steps = loop_seconds(folder / "log.lammps")
+    energies = read_energies(folder / "energy.dat")
+    total = [sum(row[k] for k in ENERGIES) for row in (energies[0], energies[-1])]
+    return {"steps": steps, "rate": steps / seconds, "wall": wall, "end": energies[-1],
+            "change": (total[1] - total[0]) / total[0]}
 
 
 def main() -> None:
@@ -38,42 +68,66 @@ def main() -> None:
     parser.add_argument("--n-disk", type=int, default=20000)
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--time", type=float, default=1.6, help="run to this time, R/c")
-    parser.add_argument("--dt", type=float, default=2e-4, help="time step, R/c")
+    parser.add_argument("--no-decay-table", action="store_true",
+                        help="leave out the runs at the study's decay rate")
+    parser.add_argument("--whole", action="store_true",
+                        help="also run the whole impact on the largest number of ranks")
     args = parser.parse_args()
-    dt = args.dt
-    roughness = 0.03 * math.sqrt(800 / args.n_disk)
-    scene = build_scene(SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness))
+    scale = math.sqrt(800 / args.n_disk)
+    dt, roughness, contact_a = 4e-3 * scale, 0.03 * scale, 300.0 / scale
+    scene = build_scene(SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness,
+                                  contact_a=contact_a))
+    cutoff = scene.info["contact"]["cutoff"]
+
     rows, reference = [], None
     for ranks in args.ranks:
-        folder = ROOT / "runs" / "bench" / f"large_{args.n_disk}_np{ranks}"
-        shutil.rmtree(folder, ignore_errors=True)
-        write_scene(scene, folder, "class2")
-        # early_stop no: run to tmax whatever the contact does
-        variables = {"scene": str(folder), "out": str(folder),
-                     **RunOptions(dt=dt, tmax=args.time, every=100).deck_variables(),
-                     "early_stop": "no"}
-        wall = run_lmp(variables, folder / "log.lammps", ranks)
-        seconds, steps = loop_seconds(folder / "log.lammps")
-        end = read_energies(folder / "energy.dat")[-1]
+        out = run(scene, f"large_{args.n_disk}_np{ranks}", dt, ranks, args.time)
+        end = out["end"]
         reference = reference or end
         difference = max(abs(end[k] - reference[k]) / abs(reference[k])
                          for k in ("ke_disk", "pe_disk", "pe_contact") if reference[k])
-        start = read_energies(folder / "energy.dat")[0]
-        total = [sum(row[k] for k in ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact"))
-                 for row in (start, end)]
-        rows.append([str(ranks), str(steps), f"{steps / seconds:,.0f}", f"{wall:.0f}",
+        rows.append([str(ranks), str(out["steps"]), f"{out['rate']:,.0f}", f"{out['wall']:.0f}",
                      f"{end['ke_disk']:.10g}", f"{end['pe_contact']:.6g}",
-                     f"{(total[1] - total[0]) / total[0]:+.1e}", f"{difference:.1e}"])
+                     f"{out['change']:+.1e}", f"{difference:.1e}"])
         print(" ".join(rows[-1]), flush=True)
     body = (f"Random lattice, 45 degrees, 0.1 c: {scene.info['n_atoms']:,} atoms, "
             f"{scene.info['n_springs']:,} springs, dt = {dt:.2e} R/c, roughness {roughness:.4f} R, "
+            f"a R = {contact_a:.0f} ({contact_a * cutoff:.1f} decay lengths within the cutoff), "
             f"run to t = {args.time} R/c (into the contact).\n\n"
             + markdown_table(["ranks", "steps", "steps/s", "wall s", "disk kinetic energy at the end",
                               "contact energy at the end", "total energy change",
-                              "largest relative difference from 1 rank"],
-                             rows))
-    command = (f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --dt {args.dt} --ranks "
-               + " ".join(map(str, args.ranks)))
+                              "largest relative difference from 1 rank"], rows))
+
+    if args.whole:
+        ranks = max(args.ranks)
+        folder = ROOT / "runs" / "bench" / f"large_{args.n_disk}_whole"
+        shutil.rmtree(folder, ignore_errors=True)
+        write_scene(scene, folder, "class2")
+        result = run_scene(folder, RunOptions(dt=dt, nprocs=ranks, every=100))
+        whole = [[str(ranks), str(result["steps"]), f"{result['time_end']:.1f}",
+                  f"{result['wall_seconds'] / 60:.1f}", f"{result['e']:.4f}", f"{result['beta']:+.4f}",
+                  f"{result['energy_drift']:+.1e}"]]
+        print(" ".join(whole[0]), flush=True)
+        body += ("\n\n## The whole impact\n\nThe same scene to the end of the impact "
+                 "(the study's predictive stop rule).\n\n"
+                 + markdown_table(["ranks", "steps", "t end, R/c", "wall min", "e", "beta",
+                                   "energy drift"], whole))
+
+    if not args.no_decay_table:
+        decay_rows = []
+        for a in (300.0, contact_a):
+            for step in (dt, dt / 4) if a == 300.0 else (dt, dt / 2):
+                deck = {"contact_a": repr(a), "contact_V0": repr(a / 2.0)}
+                out = run(scene, f"large_{args.n_disk}_a{a:g}_dt{step:g}", step, 1, args.time, deck)
+                decay_rows.append([f"{a:.0f}", f"{a * cutoff:.1f}", f"{step:.1e}",
+                                   f"{out['change']:+.1e}"])
+                print(" ".join(decay_rows[-1]), flush=True)
+        body += ("\n\n## The contact's decay rate\n\nThe same scene on 1 rank, V0 = a m c^2 R / 2 "
+                 "for each a.\n\n"
+                 + markdown_table(["a R", "decay lengths within the cutoff", "dt",
+                                   "total energy change"], decay_rows))
+    command = (f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --ranks "
+               + " ".join(map(str, args.ranks)) + (" --no-decay-table" if args.no_decay_table else "") + (" --whole" if args.whole else ""))
     print(body)
     print(write_report("large_disk", "A large-resolution disk on several ranks", command, body))
 

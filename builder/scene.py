@@ -27,6 +27,23 @@ WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 
 
+# The contact is cut off at the spacing; exp(-a l) must have died out by then,
+# or every point that crosses the cutoff jumps in energy by V0 exp(-a cutoff).
+# The study has 20 decay lengths in it (a R = 300, 800 points); a 20,000-point
+# disk at a R = 300 has 4, and its energy grew by 46 % into the contact.
+MIN_CUTOFF_DECAYS = 15.0
+
+
+def require_contact_resolved(contact_a: float, spacing: float) -> None:
+    """Refuse a contact whose exponential is still large at the cutoff."""
+    if contact_a * spacing < MIN_CUTOFF_DECAYS:
+        raise InputError(
+            f"contact_a must be >= {MIN_CUTOFF_DECAYS / spacing:.0f} at this resolution "
+            f"(spacing {spacing:.4f} R: at least {MIN_CUTOFF_DECAYS:g} decay lengths within "
+            f"the cutoff), got {contact_a:g}; a R = 300 * sqrt(n_disk / 800) keeps the "
+            "study's 20 (docs/contact.md)")
+
+
 @dataclass
 class SceneSpec:
     """Everything that defines a scene; the seed fixes all its random draws."""
@@ -86,8 +103,14 @@ class SceneSpec:
             raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
         require_positive("wall_wave_speed", self.wall_wave_speed)
         require_positive("contact_a", self.contact_a)
+        require_contact_resolved(self.contact_a, self.wall_spacing)
         require_nonnegative("contact_time_guess", self.contact_time_guess)
         require_positive("start_gap", self.start_gap)
+
+    @property
+    def wall_spacing(self) -> float:
+        """The wall's spacing in R, which is the contact's cutoff."""
+        return bodies.triangular_spacing(self.wall_points / (self.wall_width * self.wall_height))
 
     @property
     def wall_points(self) -> int:
@@ -167,23 +190,6 @@ def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndar
     raise RuntimeError("disk placement did not converge")
 
 
-# The contact is cut off at the spacing; exp(-a l) must have died out by then,
-# or every point that crosses the cutoff jumps in energy by V0 exp(-a cutoff).
-# The study has 20 decay lengths in it (a R = 300, 800 points); a 20,000-point
-# disk at a R = 300 has 4, and its energy grew by 47 % into the contact.
-MIN_CUTOFF_DECAYS = 15.0
-
-
-def require_contact_resolved(contact_a: float, spacing: float) -> None:
-    """Refuse a contact whose exponential is still large at the cutoff."""
-    if contact_a * spacing < MIN_CUTOFF_DECAYS:
-        raise InputError(
-            f"contact_a must be >= {MIN_CUTOFF_DECAYS / spacing:.0f} at this resolution "
-            f"(spacing {spacing:.4f} R: at least {MIN_CUTOFF_DECAYS:g} decay lengths within "
-            f"the cutoff), got {contact_a:g}; a R = 300 * sqrt(n_disk / 800) keeps the "
-            "study's 20 (docs/contact.md)")
-
-
 def build_scene(spec: SceneSpec) -> Scene:
     """Build, scale and place both bodies of a scene."""
     spec.validate()
@@ -194,7 +200,6 @@ def build_scene(spec: SceneSpec) -> Scene:
     ka_wall, wall_material = spring_constant("random", wall.spacing * R,
                                              wave_speed=spec.wall_wave_speed)
     cutoff = wall.spacing * R
-    require_contact_resolved(spec.contact_a, wall.spacing)
     gamma = np.radians(spec.gamma_deg)
     velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
 
