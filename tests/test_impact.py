@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 
@@ -13,7 +14,7 @@ from analysis.dump import open_run, rebound_from_dump
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_impact, run_scene
-from runner.lammps_run import LammpsError
+from runner.lammps_run import LammpsError, lammps_error
 from runner.options import RunOptions
 
 from conftest import ROOT, SMALL, new_lammps
@@ -170,6 +171,18 @@ def test_pair_variant_lets_the_disk_into_the_wall(tmp_path):
     with pytest.raises(LammpsError, match="inside the wall"):
         run_scene(folder, RunOptions(contact="pair"))
     assert not (folder / "result.json").exists()
+
+
+def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
+    """On the shortest wall at the most grazing angle the disk reaches the
+    wall's end while still pressing into it; the run must say so at once
+    rather than wait for tmax, and record nothing."""
+    spec = SceneSpec(gamma_deg=80.5, wall_width=4.0, **SMALL)
+    folder = write_scene(build_scene(spec), tmp_path / "short_wall")
+    with pytest.raises(LammpsError, match="slid off the end of the wall"):
+        run_scene(folder, RunOptions())
+    assert not (folder / "result.json").exists()
+    assert float(re.search(r"at time ([\d.]+)", lammps_error(folder / "log.lammps", "")).group(1)) < 20.0
 
 
 @pytest.mark.parametrize("gamma, bound", [(45.0, 1e-9), (80.4, 1e-4)])
