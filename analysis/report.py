@@ -70,11 +70,15 @@ def beta0_question(fits: dict) -> str:
 
 def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
                  failed: list[dict], seconds: float) -> str:
+    seeds = len({(r["study_lattice"], r["seed"]) for r in rows}) / max(len(study["lattices"]), 1)
+    samples = (f"{study['samples']} samples each" if seeds >= study["samples"] else
+               f"{seeds:.0f} of the study's {study['samples']} samples so far (it resumes where it stopped)")
     lines = [f"# Results: study `{study['name']}`", "",
              f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
-             f"from 5.7 to 80.5 degrees; {study['samples']} samples each; v_n = {study['vn']} c; "
+             f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} c; "
              f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
-             f"{study['options']['stop_rule']}. {len(failed)} impacts failed. LAMMPS time "
+             f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
+             f"failed. LAMMPS time "
              f"{seconds / 3600:.2f} core-hours. Tables: `impacts.csv` (one row per impact), "
              f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
              f"Made by `python -m runner study paper --name {study['name']} --lattices "
