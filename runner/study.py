@@ -157,17 +157,31 @@ class Progress:
               f"{rate * 60:.0f} per minute, {left / 60:.1f} min left", flush=True)
 
 
+def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
+    """Indices of ``jobs`` in the groups a worker takes whole.
+
+    A whole sample (every lattice and angle of a seed) if there are enough
+    samples to keep every worker busy to near the end: its bodies are built
+    once, and its wall, which the lattices share, once for all. Otherwise a
+    lattice of a sample, or single impacts.
+    """
+    keys = (lambda j: j["seed"], lambda j: (j["seed"], j["lattice"]), lambda j: j["folder"])
+    for key in keys:
+        groups: dict = {}
+        for index, job in enumerate(jobs):
+            groups.setdefault(key(job), []).append(index)
+        if len(groups) >= 2 * workers:
+            break
+    return list(groups.values())
+
+
 def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dict:
     """Run every impact of the study that is not finished; returns counts."""
     from .pool import run_jobs
 
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
-    # One worker takes a whole sample (every lattice and angle of a seed): its
-    # bodies are built once and the wall, shared by the lattices, once for all.
-    groups: dict[int, list[int]] = {}
-    for index, job in enumerate(todo):
-        groups.setdefault(job["seed"], []).append(index)
+    groups = job_groups(todo, workers)
     progress = Progress(len(jobs), len(jobs) - len(todo))
     print(f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
           f"{len(todo)} to run on {workers} workers", flush=True)
@@ -178,6 +192,6 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
         mark_failed(job, lammps_error(Path(job["folder"]) / "log.lammps", message))
 
     if todo:
-        run_jobs(lambda job: run_job(study, job), todo, list(groups.values()), workers,
+        run_jobs(lambda job: run_job(study, job), todo, groups, workers,
                  on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
     return study.summary(jobs)

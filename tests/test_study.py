@@ -12,6 +12,7 @@ import time
 import pytest
 
 from runner.pool import run_jobs
+from runner.study import Study, job_groups
 
 from conftest import ROOT
 
@@ -97,3 +98,18 @@ def test_many_crashes_in_many_groups_lose_no_job():
         run_jobs(job, jobs, groups, 2, on_done=done.__setitem__, on_failed=failed.__setitem__)
         assert set(failed) == {x for x in jobs if x % 7 == 3}
         assert done == {x: -x for x in jobs if x % 7 != 3}
+
+
+@pytest.mark.parametrize("samples, lattices, angles, per_group", [
+    (10, 4, 16, 64),       # whole samples: the wall is built once per seed
+    (1, 4, 8, 8),          # one sample: a lattice each, or a worker would idle
+    (1, 1, 3, 1),          # one lattice of one sample: single impacts
+])
+def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group):
+    names = ("random", "triangular", "square_nu0.1", "square_nu0.3")[:lattices]
+    jobs = Study("groups", lattices=names, angles=angles, samples=samples).jobs()
+    groups = job_groups(jobs, workers=2)
+    assert sorted(i for g in groups for i in g) == list(range(len(jobs)))
+    assert {len(g) for g in groups} == {per_group}
+    for group in groups:
+        assert len({jobs[i]["seed"] for i in group}) == 1
