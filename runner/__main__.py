@@ -79,6 +79,10 @@ def main(argv: list[str] | None = None) -> int:
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
     study.add_argument("--dt", type=positive_float, default=None, help="time step, R/c")
     study.add_argument("--n-disk", type=count(50), default=None, help="points in each disk (default: 800)")
+    study.add_argument("--wall-width", type=positive_float, default=None,
+                       help="wall width in R (default: 8, MODEL.md's; see docs/model.md for grazing angles)")
+    study.add_argument("--contact-a", type=positive_float, default=None,
+                       help="contact decay rate a R (default: 300; 300 * sqrt(n_disk / 800) for finer disks)")
     study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
 
     args = parser.parse_args(argv)
@@ -107,13 +111,18 @@ def run_study_command(args) -> int:
 
     study = PRESETS[args.preset]
     changes = {key: value for key, value in (("samples", args.samples), ("angles", args.angles),
-                                              ("name", args.name), ("n_disk", args.n_disk))
+                                              ("name", args.name), ("n_disk", args.n_disk),
+                                              ("wall_width", args.wall_width),
+                                              ("contact_a", args.contact_a))
                if value is not None}
     if args.lattices:
         changes["lattices"] = tuple(args.lattices)
     if args.dt:
         changes["options"] = replace(study.options, dt=args.dt)
     study = replace(study, **changes)
+    study.validate()
+    if args.report_only and not (study.folder / "study.json").exists():
+        raise InputError(f"--report-only: no study in {study.folder}; run it first")
     if not args.report_only:
         if args.partitions:
             from .partitions import run_study_partitions

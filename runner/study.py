@@ -52,6 +52,8 @@ class Study:
     first_seed: int = 1
     vn: float = 0.1
     n_disk: int = 800
+    wall_width: float = 8.0        # R; MODEL.md's, too short at grazing angles (docs/model.md)
+    contact_a: float = 300.0       # a R; finer disks need more (docs/contact.md)
     options: RunOptions = field(default_factory=lambda: RunOptions(every=25, route="python"))
 
     @property
@@ -66,6 +68,8 @@ class Study:
         if self.angles < 2 or self.samples < 1:
             raise InputError(f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}")
         self.options.validate()
+        for lattice in self.lattices:      # once here, rather than in every impact
+            self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
 
     def jobs(self) -> list[dict]:
         """Every impact, grouped by sample: (lattice, seed) then angle."""
@@ -79,6 +83,7 @@ class Study:
 
     def spec(self, job: dict) -> SceneSpec:
         return SceneSpec(seed=job["seed"], gamma_deg=job["gamma"], vn=self.vn, n_disk=self.n_disk,
+                         wall_width=self.wall_width, contact_a=self.contact_a,
                          **LATTICES[job["lattice"]])
 
     def prepare(self, retry_failed: bool = False) -> list[dict]:
@@ -163,16 +168,16 @@ def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
     A whole sample (every lattice and angle of a seed) if there are enough
     samples to keep every worker busy to near the end: its bodies are built
     once, and its wall, which the lattices share, once for all. Otherwise a
-    lattice of a sample, or single impacts.
+    lattice of a sample, or single impacts. Largest first, for the same reason.
     """
     keys = (lambda j: j["seed"], lambda j: (j["seed"], j["lattice"]), lambda j: j["folder"])
     for key in keys:
         groups: dict = {}
         for index, job in enumerate(jobs):
             groups.setdefault(key(job), []).append(index)
-        if len(groups) >= 2 * workers:
+        if len(groups) >= 8 * workers:     # so the last groups leave little idle time
             break
-    return list(groups.values())
+    return sorted(groups.values(), key=len, reverse=True)
 
 
 def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dict:

@@ -101,8 +101,8 @@ def test_many_crashes_in_many_groups_lose_no_job():
 
 
 @pytest.mark.parametrize("samples, lattices, angles, per_group", [
-    (10, 4, 16, 64),       # whole samples: the wall is built once per seed
-    (1, 4, 8, 8),          # one sample: a lattice each, or a worker would idle
+    (20, 2, 3, 6),         # whole samples: the wall is built once per seed
+    (4, 4, 2, 2),          # few samples: a lattice of a sample each
     (1, 1, 3, 1),          # one lattice of one sample: single impacts
 ])
 def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group):
@@ -110,6 +110,7 @@ def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group)
     jobs = Study("groups", lattices=names, angles=angles, samples=samples).jobs()
     groups = job_groups(jobs, workers=2)
     assert sorted(i for g in groups for i in g) == list(range(len(jobs)))
+    assert [len(g) for g in groups] == sorted((len(g) for g in groups), reverse=True)
     assert {len(g) for g in groups} == {per_group}
     for group in groups:
         assert len({jobs[i]["seed"] for i in group}) == 1
