@@ -6,6 +6,7 @@ wall normal is +y; the disk moves with velocity (v_n tan gamma, -v_n).
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 
@@ -38,10 +39,10 @@ def require_contact_resolved(contact_a: float, spacing: float) -> None:
     """Refuse a contact whose exponential is still large at the cutoff."""
     if contact_a * spacing < MIN_CUTOFF_DECAYS:
         raise InputError(
-            f"contact_a must be >= {MIN_CUTOFF_DECAYS / spacing:.0f} at this resolution "
-            f"(spacing {spacing:.4f} R: at least {MIN_CUTOFF_DECAYS:g} decay lengths within "
-            f"the cutoff), got {contact_a:g}; a R = 300 * sqrt(n_disk / 800) keeps the "
-            "study's 20 (docs/contact.md)")
+            f"contact_a must be >= {math.ceil(MIN_CUTOFF_DECAYS / spacing)} at this resolution "
+            f"(wall spacing {spacing:.4f} R, the cutoff: at least {MIN_CUTOFF_DECAYS:g} decay "
+            f"lengths within it), got {contact_a:g}; 20 / spacing = {20.0 / spacing:.0f} keeps "
+            "the study's 20 (docs/contact.md)")
 
 
 @dataclass
