@@ -13,7 +13,7 @@ from .theory import Compliant, compliant_beta, walton_beta
 from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, write_csv
 
 
-def fit_all(rows: list[dict], resamples: int = 200) -> dict:
+def fit_all(rows: list[dict], resamples: int = 200, compliant: bool = True) -> dict:
     """Walton's (mu, beta0) for every lattice; the compliant model's mu for the
     random lattice, with nu from the calibration and alpha = K from the inertia."""
     fits = {}
@@ -28,8 +28,8 @@ def fit_all(rows: list[dict], resamples: int = 200) -> dict:
         m = means(data)
         fits[lattice] = {"walton": {"mu": mu, "mu_sd": mu_sd, "beta0": beta0, "beta0_sd": beta0_sd,
                                     "K": K, "chi2": reduced_chi2(m, walton_beta(m.psi, m.e, mu, beta0, K), 2)},
-                         "nu": nu, "inertia_ratio": inertia}
-        if lattice == "random":
+                         "nu": nu, "inertia_ratio": inertia, "angles": len(data)}
+        if lattice == "random" and compliant:
             (mu_c,), (mu_c_sd,) = bootstrap(data, lambda d: fit_compliant(d, nu, K),
                                             max(20, resamples // 10))
             curve = [compliant_beta(p, Compliant(e=e, mu=mu_c, nu=nu, alpha=K)) for p, e in zip(m.psi, m.e)]
@@ -68,11 +68,43 @@ def beta0_question(fits: dict) -> str:
             f"deviations), so beta0 {verdict}.")
 
 
+def clear_of_the_ends(rows: list[dict], means: list[dict], share: float = 0.1) -> list[dict]:
+    """The rows at the angles where at most ``share`` of a lattice's contacts
+    came within a radius of a fixed side of the wall."""
+    clear = {(m["study_lattice"], m["gamma_deg"]) for m in means if m["near_side"] <= share * m["samples"]}
+    return [r for r in rows if (r["study_lattice"], float(r["gamma_deg"])) in clear]
+
+
+def wall_end_section(means: list[dict], fits_clear: dict) -> list[str]:
+    """How many contacts felt the wall's ends, and the fits without those angles."""
+    near = [m for m in means if m["near_side"]]
+    if not near:
+        return []
+    lines = ["## The wall's ends", "",
+             "MODEL.md's wall is 8 R wide, and the contact must not reach its fixed sides. At "
+             "grazing angles the disk slides, and after the main contact skims the rough wall, "
+             "over more than that. Contacts whose disk centre came within 1 R of a fixed side:", "",
+             "| lattice | gamma | contacts near a side | impacts |", "|---|---|---|---|"]
+    lines += [f"| {m['study_lattice']} | {m['gamma_deg']:g} | {m['near_side']} | {m['samples']} |"
+              for m in near]
+    lines += ["", "On a wall twice as wide no contact came near a side at those angles, and e "
+              "moved by a few hundredths (`python bench/wall_width.py`, "
+              "docs/benchmarks/wall_width.md). Walton's fit over the angles where at most 10 % "
+              "of the contacts came near a side:", "",
+              "| lattice | angles | Walton mu | Walton beta0 | chi2/dof |", "|---|---|---|---|---|"]
+    for lattice, fit in fits_clear.items():
+        walton = fit["walton"]
+        lines.append(f"| {lattice} | {fit['angles']} | {walton['mu']:.3f} +- {walton['mu_sd']:.3f} "
+                     f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {walton['chi2']:.1f} |")
+    return lines + [""]
+
+
 def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
-                 failed: list[dict], seconds: float) -> str:
-    seeds = len({(r["study_lattice"], r["seed"]) for r in rows}) / max(len(study["lattices"]), 1)
-    samples = (f"{study['samples']} samples each" if seeds >= study["samples"] else
-               f"{seeds:.0f} of the study's {study['samples']} samples so far (it resumes where it stopped)")
+                 failed: list[dict], seconds: float, samples_done: int,
+                 fits_clear: dict | None = None) -> str:
+    samples = (f"{study['samples']} samples each" if samples_done >= study["samples"] else
+               f"{samples_done} of the study's {study['samples']} samples complete "
+               "(it resumes where it stopped)")
     lines = [f"# Results: study `{study['name']}`", "",
              f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
              f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} c; "
@@ -103,7 +135,7 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
               "per degree of freedom against the means per angle; about 1 if the model "
               "describes the data within its standard errors, well above 1 if it does not.", "",
               *model_verdicts(fits), "", "## Does beta0 depend on the Poisson ratio?", "",
-              beta0_question(fits), "", "## Figures", ""]
+              beta0_question(fits), "", *wall_end_section(means, fits_clear or {}), "## Figures", ""]
     for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
                         ("e", "e against cot gamma"),
                         ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
@@ -133,6 +165,11 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
     figures.draw(means, fits, figure_dir)
     info = json.loads((out / "study.json").read_text())
     seconds = sum(float(r["wall_seconds"]) for r in rows)
+    # a sample is complete when none of its impacts is pending (done or failed)
+    pending = {job["seed"] for job in jobs
+               if not any((Path(job["folder"]) / name).exists() for name in ("result.json", "failed.json"))}
+    samples_done = len({job["seed"] for job in jobs} - pending)
+    fits_clear = fit_all(clear_of_the_ends(rows, means), resamples, compliant=False)
     page.write_text(results_page(info, rows, means, fits, figure_dir.relative_to(page.parent).as_posix(),
-                                 failed, seconds))
+                                 failed, seconds, samples_done, fits_clear))
     return {"rows": len(rows), "failed": len(failed), "fits": fits, "page": str(page)}

@@ -47,6 +47,7 @@ def analyse_run(folder: Path | str) -> dict:
         "contact_end": end,
         "time_end": float(series["time"][-1]),
         "side_clearance": side_clearance(series, spec["wall_width"], radius),
+        "wall_width": spec["wall_width"],
         "disk_inertia_ratio": scene["disk_inertia_ratio"],
         "n_disk_points": scene["n_disk_points"],
         "n_wall_points": scene["n_wall_points"],

@@ -11,11 +11,14 @@ import numpy as np
 # The columns of impacts.csv, in order; every result.json has them.
 COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
            "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
+           "wall_width", "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
            "contact", "stop_rule", "lammps_version", "git_revision")
 MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
                 "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
-                "vibration_disk", "vibration_wall", "disk_inertia_ratio")
+                "vibration_disk", "vibration_wall", "disk_inertia_ratio", "near_side")
+# A contact whose disk centre came within a radius of a fixed side of the wall
+# felt the wall's end (docs/model.md); means.csv counts them.
+NEAR_SIDE = 1.0
 
 
 def row(result: dict, study_lattice: str) -> dict:
@@ -40,7 +43,11 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
     for lattice, folder in folders:
         result = Path(folder) / "result.json"
         if result.exists():
-            rows.append(row(json.loads(result.read_text()), lattice))
+            values = json.loads(result.read_text())
+            if "wall_width" not in values:       # results written before the column existed
+                scene = json.loads((Path(folder) / "scene.json").read_text())
+                values["wall_width"] = scene["spec"]["wall_width"]
+            rows.append(row(values, lattice))
     return rows
 
 
@@ -57,6 +64,7 @@ def mean_rows(rows: list[dict]) -> list[dict]:
             values = np.array([float(r[name]) for r in group])
             mean[name] = float(values.mean())
             mean[f"{name}_se"] = float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else 0.0
+        mean["near_side"] = sum(float(r["side_clearance"]) < NEAR_SIDE for r in group)
         out.append(mean)
     return out
 
