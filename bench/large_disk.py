@@ -4,7 +4,7 @@
 
 A disk of n_disk points (random lattice, 45 degrees, 0.1 c) on a wall at the
 same number density, run by lmp from the start of the approach into the
-contact (to t = --time R/c) on each number of ranks. Two of the study's
+contact (to t = --time R/c) on each number of ranks. Three of the study's
 settings are kept in units of the spacing, which shrinks as sqrt(800 / n_disk):
 the roughness, 0.03 R * sqrt(800 / n_disk) (the model's 0.03 R is over two
 spacings of a 20,000-point disk, too rough for its surface row: the builder
@@ -36,7 +36,7 @@ from common import ROOT, loop_seconds, markdown_table, write_report
 
 from analysis.series import read_energies
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import Scene, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import run_lmp
 from runner.options import RunOptions
@@ -45,7 +45,7 @@ from runner.options import RunOptions
 ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")
 
 
-def run(scene, name: str, dt: float, ranks: int, until: float, deck: dict | None = None) -> dict:
+def run(scene: Scene, name: str, dt: float, ranks: int, until: float, deck: dict | None = None) -> dict:
     """Run the scene into the contact; steps/s, the energies at the end and the
     change of the total energy. ``deck`` overrides the scene's own settings."""
     folder = ROOT / "runs" / "bench" / name
@@ -126,8 +126,9 @@ def main() -> None:
                  "for each a.\n\n"
                  + markdown_table(["a R", "decay lengths within the cutoff", "dt",
                                    "total energy change"], decay_rows))
+    flags = (" --no-decay-table" if args.no_decay_table else "") + (" --whole" if args.whole else "")
     command = (f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --ranks "
-               + " ".join(map(str, args.ranks)) + (" --no-decay-table" if args.no_decay_table else "") + (" --whole" if args.whole else ""))
+               + " ".join(map(str, args.ranks)) + flags)
     print(body)
     print(write_report("large_disk", "A large-resolution disk on several ranks", command, body))
 

@@ -11,7 +11,7 @@ time). "2 runs at once" is two single-scene runs started together, one per
 core, which is what the study's two workers do.
 
 The copies run without contact: the segment contact knows one wall polyline,
-and its cost is 3-6 % of a step (docs/benchmarks/contact_cost.md), so it
+and its cost is 3 to 5 % of a step (docs/benchmarks/contact_cost.md), so it
 cannot change the comparison.
 """
 
@@ -56,8 +56,9 @@ def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) 
     logs = [tmp / f"packing_{copies}_{ranks}_{i}.log" for i in range(runs)]
     procs = [start(scene, copies, ranks, steps, log) for log in logs]
     for proc in procs:
-        if proc.wait() != 0:
-            raise RuntimeError(f"lmp failed: {proc.stderr.read().strip()[-300:]}")
+        _, errors = proc.communicate()
+        if proc.returncode != 0:
+            raise RuntimeError(f"lmp failed: {errors.strip()[-300:]}")
     times = [loop_time(log) for log in logs]
     rate = sum(copies * steps / t["loop"] for t in times)
     shares = {name: times[0][name] / times[0]["loop"] for name in SECTIONS}
