@@ -135,7 +135,11 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
               "per degree of freedom against the means per angle; about 1 if the model "
               "describes the data within its standard errors, well above 1 if it does not.", "",
               *model_verdicts(fits), "", "## Does beta0 depend on the Poisson ratio?", "",
-              beta0_question(fits), "", *wall_end_section(means, fits_clear or {}), "## Figures", ""]
+              beta0_question(fits), ""]
+    if fits_clear and fits_clear.keys() >= {"square_nu0.1", "square_nu0.3"}:
+        lines += ["Over the angles whose contacts stayed clear of the wall's ends (below): "
+                  + beta0_question(fits_clear), ""]
+    lines += [*wall_end_section(means, fits_clear or {}), "## Figures", ""]
     for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
                         ("e", "e against cot gamma"),
                         ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
