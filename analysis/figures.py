@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .table import near_the_ends
 from .theory import Compliant, compliant_beta, walton_beta
 
 LABELS = {"random": "random", "triangular": "triangular",
@@ -27,13 +28,18 @@ def _axes(ylabel: str):
 
 
 def _points(ax, means: list[dict], lattice: str, key: str) -> bool:
+    """Means with standard errors; open symbols where the contacts felt the wall's ends."""
     rows = [m for m in means if m["study_lattice"] == lattice]
     if not rows:
         return False
     color, marker = STYLE[lattice]
-    ax.errorbar([m["cot_gamma"] for m in rows], [m[key] for m in rows],
-                yerr=[m[f"{key}_se"] for m in rows], fmt=marker, color=color, ms=4, capsize=2,
-                label=LABELS[lattice])
+    for near, label in ((False, LABELS[lattice]), (True, "_nolegend_")):
+        part = [m for m in rows if near_the_ends(m) == near]
+        if part:
+            ax.errorbar([m["cot_gamma"] for m in part], [m[key] for m in part],
+                        yerr=[m[f"{key}_se"] for m in part], fmt=marker, color=color, ms=4,
+                        capsize=2, label=label, mfc="none" if near else color)
+            ax.open_symbols = getattr(ax, "open_symbols", False) or near
     return True
 
 
@@ -58,6 +64,9 @@ def _walton(ax, means, fits, lattice):
 def _finish(fig, ax, path: Path, empty: str) -> Path:
     if ax.has_data():
         ax.legend(fontsize=8)
+        if getattr(ax, "open_symbols", False):
+            ax.text(0.99, 0.01, "open symbols: contacts near the wall's ends", fontsize=7,
+                    transform=ax.transAxes, ha="right", va="bottom")
     else:
         ax.text(0.5, 0.5, empty, transform=ax.transAxes, ha="center")
     fig.tight_layout()

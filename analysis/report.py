@@ -10,7 +10,7 @@ import numpy as np
 from . import figures
 from .fits import bootstrap, fit_compliant, fit_walton, means, reduced_chi2
 from .theory import Compliant, compliant_beta, walton_beta
-from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, write_csv
+from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, near_the_ends, write_csv
 
 
 def fit_all(rows: list[dict], resamples: int = 200, compliant: bool = True) -> dict:
@@ -68,10 +68,10 @@ def beta0_question(fits: dict) -> str:
             f"deviations), so beta0 {verdict}.")
 
 
-def clear_of_the_ends(rows: list[dict], means: list[dict], share: float = 0.1) -> list[dict]:
-    """The rows at the angles where at most ``share`` of a lattice's contacts
-    came within a radius of a fixed side of the wall."""
-    clear = {(m["study_lattice"], m["gamma_deg"]) for m in means if m["near_side"] <= share * m["samples"]}
+def clear_of_the_ends(rows: list[dict], means: list[dict]) -> list[dict]:
+    """The rows at the angles where few of a lattice's contacts came within a
+    radius of a fixed side of the wall (table.near_the_ends)."""
+    clear = {(m["study_lattice"], m["gamma_deg"]) for m in means if not near_the_ends(m)}
     return [r for r in rows if (r["study_lattice"], float(r["gamma_deg"])) in clear]
 
 
