@@ -52,21 +52,21 @@ def _curve_grid(means: list[dict], lattice: str):
     return grid, np.interp(np.log(grid), np.log(psi), e)
 
 
-def _walton(ax, means, fits, lattice):
-    fit = fits.get(lattice, {}).get("walton")
-    if not fit:
-        return
+def _walton(ax, means, fits, lattice, fits_clear=None):
+    """Walton's fit over all angles, and dashed over the angles clear of the wall's ends."""
     grid, e = _curve_grid(means, lattice)
-    ax.plot(grid, walton_beta(grid, e, fit["mu"], fit["beta0"], fit["K"]), color=STYLE[lattice][0],
-            lw=1, label=f"Walton, mu = {fit['mu']:.3f}, beta0 = {fit['beta0']:.3f}")
+    for source, style, note in ((fits, "-", ""), (fits_clear or {}, "--", " (clear of the ends)")):
+        fit = source.get(lattice, {}).get("walton")
+        if fit:
+            ax.plot(grid, walton_beta(grid, e, fit["mu"], fit["beta0"], fit["K"]),
+                    color=STYLE[lattice][0], lw=1, ls=style,
+                    label=f"Walton{note}, mu = {fit['mu']:.3f}, beta0 = {fit['beta0']:.3f}")
 
 
 def _finish(fig, ax, path: Path, empty: str) -> Path:
     if ax.has_data():
-        ax.legend(fontsize=8)
-        if getattr(ax, "open_symbols", False):
-            ax.text(0.99, 0.01, "open symbols: contacts near the wall's ends", fontsize=7,
-                    transform=ax.transAxes, ha="right", va="bottom")
+        note = "open symbols: contacts near the wall's ends" if getattr(ax, "open_symbols", False) else None
+        ax.legend(fontsize=7, title=note, title_fontsize=7)
     else:
         ax.text(0.5, 0.5, empty, transform=ax.transAxes, ha="center")
     fig.tight_layout()
@@ -76,15 +76,16 @@ def _finish(fig, ax, path: Path, empty: str) -> Path:
     return path
 
 
-def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
-    """The four figures, as PNG files in ``folder``."""
+def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = None) -> list[Path]:
+    """The four figures, as PNG files in ``folder``; ``fits_clear``: Walton's fits
+    over the angles whose contacts stayed clear of the wall's ends."""
     folder.mkdir(parents=True, exist_ok=True)
     paths = []
 
     fig, ax = _axes("beta")
     for lattice in ("random", "triangular"):
         if _points(ax, means, lattice, "beta"):
-            _walton(ax, means, fits, lattice)
+            _walton(ax, means, fits, lattice, fits_clear)
     paths.append(_finish(fig, ax, folder / "beta_random_triangular.png", "no random or triangular data"))
 
     fig, ax = _axes("e")
@@ -94,7 +95,7 @@ def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
 
     fig, ax = _axes("beta")
     if _points(ax, means, "random", "beta"):
-        _walton(ax, means, fits, "random")
+        _walton(ax, means, fits, "random", fits_clear)
         fit = fits.get("random", {}).get("compliant")
         if fit:
             grid, e = _curve_grid(means, "random")
@@ -107,6 +108,6 @@ def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
     fig, ax = _axes("beta")
     for lattice in ("square_nu0.1", "square_nu0.3"):
         if _points(ax, means, lattice, "beta"):
-            _walton(ax, means, fits, lattice)
+            _walton(ax, means, fits, lattice, fits_clear)
     paths.append(_finish(fig, ax, folder / "beta_square.png", "no square-lattice data in this study"))
     return paths

@@ -167,7 +167,6 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     page = page or out / "results.md"
     figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
-    figures.draw(means, fits, figure_dir)
     info = json.loads((out / "study.json").read_text())
     seconds = sum(float(r["wall_seconds"]) for r in rows)
     # a sample is complete when none of its impacts is pending (done or failed)
@@ -175,6 +174,7 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
                if not any((Path(job["folder"]) / name).exists() for name in ("result.json", "failed.json"))}
     samples_done = len({job["seed"] for job in jobs} - pending)
     fits_clear = fit_all(clear_of_the_ends(rows, means), resamples, compliant=False)
+    figures.draw(means, fits, figure_dir, fits_clear)
     page.write_text(results_page(info, rows, means, fits, figure_dir.relative_to(page.parent).as_posix(),
                                  failed, seconds, samples_done, fits_clear))
     return {"rows": len(rows), "failed": len(failed), "fits": fits, "page": str(page)}
