@@ -75,15 +75,16 @@ def clear_of_the_ends(rows: list[dict], means: list[dict]) -> list[dict]:
     return [r for r in rows if (r["study_lattice"], float(r["gamma_deg"])) in clear]
 
 
-def wall_end_section(means: list[dict], fits_clear: dict) -> list[str]:
+def wall_end_section(means: list[dict], fits_clear: dict, wall_width: float) -> list[str]:
     """How many contacts felt the wall's ends, and the fits without those angles."""
     near = [m for m in means if m["near_side"]]
     if not near:
         return []
     lines = ["## The wall's ends", "",
-             "MODEL.md's wall is 8 R wide, and the contact must not reach its fixed sides. At "
-             "grazing angles the disk slides, and after the main contact skims the rough wall, "
-             "over more than that. Contacts whose disk centre came within 1 R of a fixed side:", "",
+             f"This study's wall is {wall_width:g} R wide (MODEL.md's is 8 R), and the contact "
+             "must not reach its fixed sides. At grazing angles the disk slides, and after the "
+             "main contact skims the rough wall, over a long way. Contacts whose disk centre "
+             "came within 1 R of a fixed side:", "",
              "| lattice | gamma | contacts near a side | impacts |", "|---|---|---|---|"]
     lines += [f"| {m['study_lattice']} | {m['gamma_deg']:g} | {m['near_side']} | {m['samples']} |"
               for m in near]
@@ -116,7 +117,8 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
              f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
              f"Made by `python -m runner study paper --name {study['name']} --lattices "
              f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
-             f"--n-disk {study['n_disk']}`.", "",
+             f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
+             f"--contact-a {study.get('contact_a', 300.0):g} --dt {study['options']['dt']:g}`.", "",
              "## Fitted parameters", "",
              "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | Walton chi2/dof | compliant mu "
              "| compliant chi2/dof |", "|---|---|---|---|---|---|---|---|"]
@@ -140,7 +142,7 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
     if fits_clear and fits_clear.keys() >= {"square_nu0.1", "square_nu0.3"}:
         lines += ["Over the angles whose contacts stayed clear of the wall's ends (below): "
                   + beta0_question(fits_clear), ""]
-    lines += [*wall_end_section(means, fits_clear or {}), "## Figures", ""]
+    lines += [*wall_end_section(means, fits_clear or {}, study.get("wall_width", 8.0)), "## Figures", ""]
     for name, title in (("beta_random_triangular", "beta against cot gamma, random and triangular, with Walton's fits"),
                         ("e", "e against cot gamma"),
                         ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
