@@ -101,6 +101,15 @@ def wall_end_section(means: list[dict], fits_clear: dict, wall_width: float) -> 
     return lines + [""]
 
 
+def wall_options(study: dict) -> str:
+    """The study's reading of the wall as options (studies from before the
+    readings had the disk's density, springs for its c, the sides held)."""
+    n_wall = study.get("n_wall", "density")
+    wall_ka = study.get("wall_ka", "same-c")
+    return (f"--n-wall {n_wall} --wall-ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}'} "
+            f"--wall-fixed {study.get('wall_fixed', 'sides')}")
+
+
 def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
                  failed: list[dict], seconds: float, samples_done: int,
                  fits_clear: dict | None = None) -> str:
@@ -118,7 +127,8 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
              f"Made by `python -m runner study paper --name {study['name']} --lattices "
              f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
              f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
-             f"--contact-a {study.get('contact_a', 300.0):g} --dt {study['options']['dt']:g}`.", "",
+             f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
+             f"--dt {study['options']['dt']:g}`.", "",
              "## Fitted parameters", "",
              "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | Walton chi2/dof | compliant mu "
              "| compliant chi2/dof |", "|---|---|---|---|---|---|---|---|"]

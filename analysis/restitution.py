@@ -71,6 +71,15 @@ def contact_window(series: np.ndarray) -> tuple[float, float]:
     return float(times[0]), float(times[-1])
 
 
+def touches(series: np.ndarray) -> int:
+    """Separate touches: runs of rows in which a disk point was within the cutoff.
+
+    A gap shorter than the series' row interval is not seen.
+    """
+    touching = (series["pe_contact"] > 0.0).astype(int)
+    return int(np.count_nonzero(np.diff(np.concatenate([[0], touching])) == 1))
+
+
 def side_clearance(series: np.ndarray, wall_width: float, radius: float = 1.0) -> float:
     """Least distance, during contact, from the disk's centre to a fixed side of the wall."""
     start, end = contact_window(series)

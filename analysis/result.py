@@ -7,7 +7,8 @@ import os
 import tempfile
 from pathlib import Path
 
-from .restitution import contact_window, energy_split, rebound_from_series, side_clearance
+from .restitution import (contact_window, energy_split, rebound_from_series, side_clearance,
+                          touches)
 from .series import read_energies, read_series
 
 
@@ -35,6 +36,7 @@ def analyse_run(folder: Path | str) -> dict:
         "beta": rebound.beta,
         "omega": rebound.omega,
         "contact_time": end - start,
+        "touches": touches(series),
         "steps": int(series["step"][-1]),
         "wall_seconds": run["wall_seconds"],
         "lammps_version": run["lammps_version"],
@@ -48,6 +50,11 @@ def analyse_run(folder: Path | str) -> dict:
         "time_end": float(series["time"][-1]),
         "side_clearance": side_clearance(series, spec["wall_width"], radius),
         "wall_width": spec["wall_width"],
+        "n_wall": spec["n_wall"],
+        "wall_ka": spec["wall_ka"],
+        "wall_fixed": spec["wall_fixed"],
+        "wall_spacing": scene["wall_spacing"],
+        "ka_wall_over_disk": scene["ka_wall"] / scene["ka_disk"],
         "disk_inertia_ratio": scene["disk_inertia_ratio"],
         "n_disk_points": scene["n_disk_points"],
         "n_wall_points": scene["n_wall_points"],

@@ -10,8 +10,9 @@ import numpy as np
 
 # The columns of impacts.csv, in order; every result.json has them.
 COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
-           "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-           "wall_width", "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
+           "contact_time", "touches", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
+           "wall_width", "n_wall", "wall_ka", "wall_fixed", "n_wall_points", "ka_wall_over_disk",
+           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
            "contact", "stop_rule", "lammps_version", "git_revision")
 MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
                 "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
@@ -52,9 +53,15 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
         result = Path(folder) / "result.json"
         if result.exists():
             values = json.loads(result.read_text())
-            if "wall_width" not in values:       # results written before the column existed
+            if "n_wall" not in values:       # results written before these columns existed
                 scene = json.loads((Path(folder) / "scene.json").read_text())
-                values["wall_width"] = scene["spec"]["wall_width"]
+                spec = scene["spec"]
+                values.setdefault("wall_width", spec["wall_width"])
+                # the scenes before the readings: the disk's density, springs for its c
+                values["n_wall"] = spec.get("n_wall") or "density"
+                values["wall_ka"] = spec.get("wall_ka", "same-c")
+                values["wall_fixed"] = spec["wall_fixed"]
+                values["ka_wall_over_disk"] = scene["ka_wall"] / scene["ka_disk"]
             rows.append(row(values, lattice))
     return rows
 

@@ -24,6 +24,12 @@ TYPE_NAMES = {DISK_SURFACE: "disk surface", DISK_INTERIOR: "disk interior",
               WALL_SURFACE: "wall surface", WALL_INTERIOR: "wall interior",
               WALL_FIXED: "wall fixed"}
 WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
+# The readings of the wall that the paper leaves open (MODEL.md section 8):
+# n_wall is a number of points or "density" (the disk's number density), and
+# wall_ka is the wall's spring constant over the disk's, or "same-c" (the ka
+# that gives the wall the disk's wave speed).
+WALL_DENSITY = "density"
+WALL_SAME_C = "same-c"
 # Molecule IDs tell the bodies apart and which wall points are held fixed.
 DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 
@@ -55,14 +61,14 @@ class SceneSpec:
     vn: float = 0.1               # normal approach speed, in units of c
     radius: float = 1.0           # R, the unit of length
     n_disk: int = 800             # target number of points in the disk
-    n_wall: int | None = None     # default: the disk's number density
+    n_wall: int | str = 800       # points in the wall, or "density": the disk's number density
     roughness: float = 0.03       # std of surface displacement, in R
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
     kb_over_ka: float = 1e-3
     wall_fixed: str = "sides"
     wall_width: float = 8.0       # in R
     wall_height: float = 2.0      # in R
-    wall_wave_speed: float = 1.0  # wall's c over the disk's c
+    wall_ka: float | str = 1.0    # wall's ka over the disk's, or "same-c": the disk's wave speed
     contact_a: float = 300.0      # decay rate of the contact, a R
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1        # extra gap beyond the cutoff at start, in spacings
@@ -74,7 +80,7 @@ class SceneSpec:
             if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
                 setattr(self, name, kind(value))
         for name in ("gamma_deg", "vn", "radius", "roughness", "k2_over_k1", "kb_over_ka",
-                     "wall_width", "wall_height", "wall_wave_speed", "contact_a",
+                     "wall_width", "wall_height", "wall_ka", "contact_a",
                      "contact_time_guess", "start_gap"):
             value = getattr(self, name)
             if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
@@ -91,8 +97,11 @@ class SceneSpec:
         require_positive("radius", self.radius)
         if not self.n_disk >= 50:
             raise InputError(f"n_disk must be an integer >= 50, got {self.n_disk}")
-        if self.n_wall is not None and not self.n_wall >= 50:
-            raise InputError(f"n_wall must be an integer >= 50, got {self.n_wall}")
+        if self.n_wall != WALL_DENSITY and not (
+                isinstance(self.n_wall, int) and not isinstance(self.n_wall, bool)
+                and self.n_wall >= 50):
+            raise InputError(f"n_wall must be an integer >= 50 or {WALL_DENSITY!r}, "
+                             f"got {self.n_wall!r}")
         if not 0.0 <= self.roughness <= 0.1:
             raise InputError(f"roughness must be in [0, 0.1] (units of R), got {self.roughness}")
         require_positive("k2_over_k1", self.k2_over_k1)
@@ -102,7 +111,10 @@ class SceneSpec:
             raise InputError(f"wall_width must be >= 4 (units of R), got {self.wall_width}")
         if not self.wall_height >= 0.5:
             raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
-        require_positive("wall_wave_speed", self.wall_wave_speed)
+        if self.wall_ka != WALL_SAME_C and not (
+                isinstance(self.wall_ka, float) and 0.01 <= self.wall_ka <= 1000.0):
+            raise InputError(f"wall_ka must be a number in [0.01, 1000] (the wall's ka over the "
+                             f"disk's) or {WALL_SAME_C!r}, got {self.wall_ka!r}")
         require_positive("contact_a", self.contact_a)
         require_contact_resolved(self.contact_a, self.wall_spacing)
         require_nonnegative("contact_time_guess", self.contact_time_guess)
@@ -115,7 +127,8 @@ class SceneSpec:
 
     @property
     def wall_points(self) -> int:
-        if self.n_wall is not None:
+        """Points in the wall: n_wall, or the disk's number density times its area."""
+        if self.n_wall != WALL_DENSITY:
             return int(self.n_wall)
         density = self.n_disk / np.pi
         return int(round(density * self.wall_width * self.wall_height))
@@ -198,8 +211,8 @@ def build_scene(spec: SceneSpec) -> Scene:
     disk, wall = build_bodies(spec)
 
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
-    ka_wall, wall_material = spring_constant("random", wall.spacing * R,
-                                             wave_speed=spec.wall_wave_speed)
+    ka_same_c, wall_material = spring_constant("random", wall.spacing * R)
+    ka_wall = ka_same_c if spec.wall_ka == WALL_SAME_C else spec.wall_ka * ka_disk
     cutoff = wall.spacing * R
     gamma = np.radians(spec.gamma_deg)
     velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])

@@ -5,7 +5,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.cli import OneLineParser, add_scene_arguments, count, positive_float, spec_from_args
+from builder.cli import (OneLineParser, add_scene_arguments, add_wall_arguments, count,
+                         positive_float, spec_from_args)
 from builder.errors import BuildError, InputError
 
 from .lammps_run import LammpsError
@@ -83,6 +84,8 @@ def main(argv: list[str] | None = None) -> int:
                        help="wall width in R (default: 8, MODEL.md's; see docs/model.md for grazing angles)")
     study.add_argument("--contact-a", type=positive_float, default=None,
                        help="contact decay rate a R (default: 300; 300 * sqrt(n_disk / 800) for finer disks)")
+    add_wall_arguments(study.add_argument_group("the wall's reading (default: the preset's)"),
+                       defaults=False)
     study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
 
     args = parser.parse_args(argv)
@@ -113,7 +116,9 @@ def run_study_command(args) -> int:
     changes = {key: value for key, value in (("samples", args.samples), ("angles", args.angles),
                                               ("name", args.name), ("n_disk", args.n_disk),
                                               ("wall_width", args.wall_width),
-                                              ("contact_a", args.contact_a))
+                                              ("contact_a", args.contact_a),
+                                              ("n_wall", args.n_wall), ("wall_ka", args.wall_ka),
+                                              ("wall_fixed", args.wall_fixed))
                if value is not None}
     if args.lattices:
         changes["lattices"] = tuple(args.lattices)

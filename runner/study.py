@@ -54,6 +54,9 @@ class Study:
     n_disk: int = 800
     wall_width: float = 8.0        # R; MODEL.md's, too short at grazing angles (docs/model.md)
     contact_a: float = 300.0       # a R; finer disks need more (docs/contact.md)
+    n_wall: int | str = SceneSpec.n_wall      # the reading of the wall (MODEL.md section 8)
+    wall_ka: float | str = SceneSpec.wall_ka
+    wall_fixed: str = SceneSpec.wall_fixed
     options: RunOptions = field(default_factory=lambda: RunOptions(every=25, route="python"))
 
     @property
@@ -84,6 +87,7 @@ class Study:
     def spec(self, job: dict) -> SceneSpec:
         return SceneSpec(seed=job["seed"], gamma_deg=job["gamma"], vn=self.vn, n_disk=self.n_disk,
                          wall_width=self.wall_width, contact_a=self.contact_a,
+                         n_wall=self.n_wall, wall_ka=self.wall_ka, wall_fixed=self.wall_fixed,
                          **LATTICES[job["lattice"]])
 
     def prepare(self, retry_failed: bool = False) -> list[dict]:
