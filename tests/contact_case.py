@@ -9,8 +9,8 @@ import numpy as np
 
 from reference.contact import inside
 from runner.lammps_run import mpi_environment, mpi_launcher
+from tests.helpers import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "tests" / "decks" / "contact_forces.lmp"
 A, V0, CUTOFF = 300.0, 150.0, 0.0673
 

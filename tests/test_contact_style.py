@@ -7,7 +7,7 @@ import pytest
 
 from reference.contact import polyline_contact
 
-from contact_case import A, CUTOFF, V0, lammps_forces, random_case
+from tests.contact_case import A, CUTOFF, V0, lammps_forces, random_case
 
 
 def relative(a: np.ndarray, b: np.ndarray) -> float:
