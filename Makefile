@@ -22,11 +22,12 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo paper test calibrate validate bench bench-impact bench-study clean
+.PHONY: help setup setup-pypi demo paper test lint reference-logs calibrate validate bench bench-impact bench-study clean
 
 help:
 	@echo "make demo          set up, then a small study: random lattice, 16 angles x 4 samples"
 	@echo "make test          set up, then run the tests"
+	@echo "make lint          ruff's checks and format check on the Python (pyproject.toml)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
@@ -108,6 +109,16 @@ paper: setup
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
+
+# Lint and format check with a pinned ruff (the same pin as pyproject.toml's `lint`
+# extra; keep the two equal), installed into .venv on first use. Settings in
+# pyproject.toml.
+RUFF_VERSION := 0.17.6
+lint: $(STAMPS)/python
+	@$(VENV)/bin/ruff --version 2>/dev/null | grep -qx 'ruff $(RUFF_VERSION)' || \
+	    $(PYTHON) -m pip install --quiet --disable-pip-version-check ruff==$(RUFF_VERSION)
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
 
 # The materials table (calibration/materials.json, docs/materials.md): about
 # three minutes on two cores. The table is committed; scenes refuse lattices
