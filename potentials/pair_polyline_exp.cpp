@@ -1,6 +1,23 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/
+
+   Copyright (2026) the contributors to the oblique-impact workflow.
+   This file is not part of the LAMMPS distribution. It is written to be
+   compiled against LAMMPS and is, like LAMMPS, free software: you may
+   redistribute and modify it under the GNU General Public License as
+   published by the Free Software Foundation, version 2 or (at your
+   option) any later version. It comes WITHOUT ANY WARRANTY; see the
+   LICENSE file in the top-level directory of the oblique-impact workflow.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: the oblique-impact workflow project
+     (pair style polyline/exp; see potentials/README.md)
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    Pair style polyline/exp: exponential repulsion of points from a polyline.
-   Part of the oblique-impact workflow; see potentials/README.md.
 
    A point p of a "point" type is repelled by the closest feature (segment
    interior or vertex) of a polyline whose vertices are the atoms with tags
