@@ -43,14 +43,14 @@ class PairPolylineExp : public Pair {
   double init_one(int, int) override;
 
  protected:
-  double a;          // decay rate of the repulsion, 1/length
-  double v0;         // energy scale: E(l) = v0 exp(-a l)
-  double cut;        // contact cutoff on the distance l to the polyline
-  double reach;      // longest segment of the polyline
-  tagint first;      // tags first..last are the polyline's vertices, in order
+  double a;        // decay rate of the repulsion, 1/length
+  double v0;       // energy scale: E(l) = v0 exp(-a l)
+  double cut;      // contact cutoff on the distance l to the polyline
+  double reach;    // longest segment of the polyline
+  tagint first;    // tags first..last are the polyline's vertices, in order
   tagint last;
-  int rule;          // LEVER or GRADIENT
-  int **active;      // active[itype][jtype]: points of itype feel vertices of jtype
+  int rule;        // LEVER or GRADIENT
+  int **active;    // active[itype][jtype]: points of itype feel vertices of jtype
 
   std::vector<tagint> seen;    // segments already examined for the current point
 
