@@ -28,6 +28,7 @@ help:
 	@echo "make demo          set up, then a small study: random lattice, 16 angles x 4 samples"
 	@echo "make test          set up, then run the tests"
 	@echo "make lint          ruff's checks and format check on the Python (pyproject.toml)"
+	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the default scene changes)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
@@ -109,6 +110,12 @@ paper: setup
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
+
+# decks/log.<date>.impact.g++.1 and .2: LAMMPS's logs of the default impact
+# on one and two ranks, as LAMMPS's examples ship them (tests/reference_logs.py).
+# Run after changing the default scene or the deck, and commit the logs.
+reference-logs: setup
+	$(PYTHON) -m tests.reference_logs
 
 # Lint and format check with a pinned ruff (the same pin as pyproject.toml's `lint`
 # extra; keep the two equal), installed into .venv on first use. Settings in
