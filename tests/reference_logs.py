@@ -24,7 +24,7 @@ from tests.helpers import ROOT
 
 DECKS = ROOT / "decks"
 NAME = "impact"
-SCENE_ARGS = ["--gamma", "30", "--seed", "1"]   # every other option at its default
+SCENE_ARGS = ["--gamma", "30", "--seed", "1"]  # every other option at its default
 THERMO_EVERY = 50
 # Relative to the project's root (the deck's working directory), so that the
 # logs name no machine's temporary folder.
@@ -45,8 +45,13 @@ def build_scene(folder: Path = SCENE) -> Path:
     pathlib.Path
         ``folder``.
     """
-    subprocess.run([sys.executable, "-m", "builder", "scene", *SCENE_ARGS, "--out", str(folder)],
-                   cwd=ROOT, check=True, capture_output=True, text=True)
+    subprocess.run(
+        [sys.executable, "-m", "builder", "scene", *SCENE_ARGS, "--out", str(folder)],
+        cwd=ROOT,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     return folder
 
 
@@ -68,13 +73,19 @@ def run_impact(scene: Path, log: Path, nprocs: int = 1) -> Path:
     pathlib.Path
         ``log``.
     """
-    out = scene / f"out.{nprocs}"          # series.dat, energy.dat
+    out = scene / f"out.{nprocs}"  # series.dat, energy.dat
     (ROOT / out).mkdir(parents=True, exist_ok=True)
-    args = ["-in", "decks/impact.lmp", "-log", str(log), "-screen", "none", "-nocite",
-            "-var", "scene", str(scene), "-var", "out", str(out),
-            "-var", "thermo_every", str(THERMO_EVERY)]
-    subprocess.run(mpi_launcher(nprocs) + ["lmp"] + args, cwd=ROOT, check=True,
-                   capture_output=True, text=True, env=mpi_environment())
+    args = ["-in", "decks/impact.lmp", "-log", str(log), "-screen", "none", "-nocite"]
+    args += ["-var", "scene", str(scene), "-var", "out", str(out)]
+    args += ["-var", "thermo_every", str(THERMO_EVERY)]
+    subprocess.run(
+        mpi_launcher(nprocs) + ["lmp"] + args,
+        cwd=ROOT,
+        check=True,
+        capture_output=True,
+        text=True,
+        env=mpi_environment(),
+    )
     return log
 
 
@@ -100,7 +111,7 @@ def thermo_rows(log: Path) -> np.ndarray:
         elif inside and words:
             try:
                 rows.append([float(w) for w in words])
-            except ValueError:          # "Loop time of ...": the run's table ended
+            except ValueError:  # "Loop time of ...": the run's table ended
                 inside = False
     return np.array(rows)
 
@@ -120,8 +131,10 @@ def committed_log(nprocs: int) -> Path:
     """
     logs = sorted(DECKS.glob(f"log.*.{NAME}.g++.{nprocs}"))
     if len(logs) != 1:
-        raise FileNotFoundError(f"expected one decks/log.*.{NAME}.g++.{nprocs}, found "
-                                f"{len(logs)}: run make reference-logs")
+        raise FileNotFoundError(
+            f"expected one decks/log.*.{NAME}.g++.{nprocs}, found "
+            f"{len(logs)}: run make reference-logs"
+        )
     return logs[0]
 
 
@@ -129,7 +142,7 @@ def main(argv: list[str] | None = None) -> None:
     """Write decks/log.<today>.impact.g++.1 and .2, removing older ones."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.parse_args(argv)
-    stamp = date.today().strftime("%d%b%y").lstrip("0")    # LAMMPS's style: 23Nov26
+    stamp = date.today().strftime("%d%b%y").lstrip("0")  # LAMMPS's style: 23Nov26
     build_scene()
     for nprocs in (1, 2):
         for old in DECKS.glob(f"log.*.{NAME}.g++.{nprocs}"):

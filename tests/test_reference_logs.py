@@ -31,7 +31,7 @@ def test_fresh_run_matches_the_reference_log(tmp_path):
     reference = thermo_rows(committed_log(1))
     scene = build_scene(tmp_path / "scene")
     fresh = thermo_rows(run_impact(scene, tmp_path / "log.lammps", nprocs=1))
-    assert len(reference) > 20                       # rows through the whole contact
+    assert len(reference) > 20  # rows through the whole contact
     assert_same_rows(fresh, reference)
 
 

@@ -25,8 +25,9 @@ from tests.contact_case import lammps_virial, random_case
 TOLERANCE = 1e-12
 
 
-def r_dot_f(vertices: np.ndarray, points: np.ndarray, on_vertices: np.ndarray,
-            on_points: np.ndarray) -> np.ndarray:
+def r_dot_f(
+    vertices: np.ndarray, points: np.ndarray, on_vertices: np.ndarray, on_points: np.ndarray
+) -> np.ndarray:
     """xx, yy, xy of the sum over the atoms of r_a f_b."""
     r = np.concatenate([vertices, points])
     f = np.concatenate([on_vertices, on_points])
@@ -37,9 +38,10 @@ def r_dot_f(vertices: np.ndarray, points: np.ndarray, on_vertices: np.ndarray,
 def test_virial_is_the_sum_of_r_dot_f(tmp_path, rule, nprocs):
     vertices, points = random_case(8)
     on_vertices, on_points, global_virial, per_atom_sum = lammps_virial(
-        tmp_path, vertices, points, rule, nprocs)
-    assert np.count_nonzero(np.any(on_points, axis=1)) > 10            # many contacts
-    if nprocs == 2:                                                     # the cut is at x = 0
+        tmp_path, vertices, points, rule, nprocs
+    )
+    assert np.count_nonzero(np.any(on_points, axis=1)) > 10  # many contacts
+    if nprocs == 2:  # the cut is at x = 0
         assert np.any(points[:, 0] < 0) and np.any(points[:, 0] > 0)
     expected = r_dot_f(vertices, points, on_vertices, on_points)
     scale = np.abs(expected).max()
