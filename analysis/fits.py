@@ -27,7 +27,21 @@ class Means:
 
 
 def means(groups: list[np.ndarray]) -> Means:
-    """Means per angle of an array (samples, 3) of (psi, e, beta) per group."""
+    """Means per angle of an array (samples, 3) of (psi, e, beta) per group.
+
+    Parameters
+    ----------
+    groups : list of numpy.ndarray
+        One (samples, 3) array of (psi, e, beta) per angle
+        (``analysis.table.groups``).
+
+    Returns
+    -------
+    Means
+        psi, e and beta averaged per angle, and the standard error of beta; an
+        angle whose samples agree exactly gets the median standard error, not
+        infinite weight.
+    """
     psi = np.array([g[:, 0].mean() for g in groups])
     e = np.array([g[:, 1].mean() for g in groups])
     beta = np.array([g[:, 2].mean() for g in groups])
@@ -46,7 +60,20 @@ MU_GRID = np.geomspace(1e-3, 3.0, 25)
 
 
 def fit_walton(data: Means, K: float) -> np.ndarray:
-    """(mu, beta0) of Walton's model, e measured at each angle."""
+    """(mu, beta0) of Walton's model, e measured at each angle.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means (``means``).
+    K : float
+        1 + M R^2 / I of the disk.
+
+    Returns
+    -------
+    numpy.ndarray
+        The weighted least-squares (mu, beta0).
+    """
     def residuals(p):
         return (walton_beta(data.psi, data.e, p[0], p[1], K) - data.beta) / data.beta_se
 
@@ -57,7 +84,22 @@ def fit_walton(data: Means, K: float) -> np.ndarray:
 
 
 def fit_compliant(data: Means, nu: float, alpha: float) -> np.ndarray:
-    """mu of the compliant model, with nu and alpha = K measured, e at each angle."""
+    """mu of the compliant model, with nu and alpha = K measured, e at each angle.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means (``means``).
+    nu : float
+        The lattice's Poisson ratio.
+    alpha : float
+        K = 1 + M R^2 / I of the disk.
+
+    Returns
+    -------
+    numpy.ndarray
+        The weighted least-squares (mu,), one element.
+    """
     def residuals(p):
         model = [compliant_beta(psi, Compliant(e=e, mu=p[0], nu=nu, alpha=alpha))
                  for psi, e in zip(data.psi, data.e)]
@@ -69,7 +111,27 @@ def fit_compliant(data: Means, nu: float, alpha: float) -> np.ndarray:
 
 def bootstrap(groups: list[np.ndarray], fit, resamples: int = 200,
               rng: np.random.Generator | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The fit to the data and the standard deviation of fits to resamples."""
+    """The fit to the data and the standard deviation of fits to resamples.
+
+    Parameters
+    ----------
+    groups : list of numpy.ndarray
+        One (samples, 3) array of (psi, e, beta) per angle.
+    fit : callable
+        Maps ``Means`` to an array of parameters, e.g.
+        ``lambda d: fit_walton(d, K)``.
+    resamples : int
+        Number of resamples, each drawing every angle's samples with replacement.
+    rng : numpy.random.Generator, optional
+        Random draws; default a generator with seed 0 (reproducible).
+
+    Returns
+    -------
+    best : numpy.ndarray
+        The parameters fitted to ``groups``.
+    sd : numpy.ndarray
+        Their standard deviations over the resamples.
+    """
     rng = rng or np.random.default_rng(0)
     best = fit(means(groups))
     draws = []
@@ -81,6 +143,21 @@ def bootstrap(groups: list[np.ndarray], fit, resamples: int = 200,
 
 def reduced_chi2(data: Means, model_beta: np.ndarray, parameters: int) -> float:
     """Weighted squared residuals per degree of freedom: about 1 if the model
-    describes the means within their standard errors."""
+    describes the means within their standard errors.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means with the standard errors of beta.
+    model_beta : numpy.ndarray
+        The model's beta at each angle.
+    parameters : int
+        Number of fitted parameters.
+
+    Returns
+    -------
+    float
+        chi2 / (angles - parameters), the divisor at least 1.
+    """
     residuals = (np.asarray(model_beta) - data.beta) / data.beta_se
     return float(np.sum(residuals ** 2) / max(len(residuals) - parameters, 1))

@@ -15,7 +15,26 @@ from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, near_the_e
 
 def fit_all(rows: list[dict], resamples: int = 200, compliant: bool = True) -> dict:
     """Walton's (mu, beta0) for every lattice; the compliant model's mu for the
-    random lattice, with nu from the calibration and alpha = K from the inertia."""
+    random lattice, with nu from the calibration and alpha = K from the inertia.
+
+    Parameters
+    ----------
+    rows : list of dict
+        One row per impact (impacts.csv, ``analysis.table.collect``).
+    resamples : int
+        Bootstrap resamples for the standard deviations (a tenth of them, at
+        least 20, for the slower compliant fit).
+    compliant : bool
+        Fit the compliant model too (random lattice only).
+
+    Returns
+    -------
+    dict
+        Per study lattice with at least three angles of two samples:
+        ``walton`` (mu, mu_sd, beta0, beta0_sd, K, chi2), ``nu``,
+        ``inertia_ratio``, ``angles`` and, if fitted, ``compliant`` (mu, mu_sd,
+        nu, alpha, chi2); plain floats, as fits.json holds them.
+    """
     fits = {}
     for lattice in sorted({r["study_lattice"] for r in rows}):
         data = groups(rows, lattice)
@@ -165,7 +184,24 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
 
 
 def report(study, resamples: int = 200, page: Path | None = None) -> dict:
-    """Write impacts.csv, means.csv, fits.json, figures/ and results.md for a study."""
+    """Write impacts.csv, means.csv, fits.json, figures/ and results.md for a study.
+
+    Parameters
+    ----------
+    study : runner.study.Study
+        The study, with its folder under runs/.
+    resamples : int
+        Bootstrap resamples of the fits.
+    page : pathlib.Path, optional
+        Where results.md goes (default: the study's folder); the figures go
+        into ``figures/`` beside it.
+
+    Returns
+    -------
+    dict
+        ``rows`` (finished impacts), ``failed`` (failed impacts), ``fits``
+        (``fit_all``, as written to fits.json) and ``page`` (results.md's path).
+    """
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     rows.sort(key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))

@@ -31,8 +31,22 @@ def rebound(v_in: np.ndarray, v_out: np.ndarray, omega_in: float, omega_out: flo
             radius: float = 1.0, tangential: bool | None = None) -> Rebound:
     """e, beta and cot(gamma) from centre-of-mass velocities and angular velocities.
 
-    ``tangential`` says whether the impact is oblique; by default it is taken
-    as oblique unless the incoming slip is round-off (head-on: beta undefined).
+    Parameters
+    ----------
+    v_in, v_out : numpy.ndarray
+        The disk's centre-of-mass velocity (x, y) before and after the impact.
+    omega_in, omega_out : float
+        Its angular velocity before and after.
+    radius : float
+        The disk's radius R.
+    tangential : bool, optional
+        Whether the impact is oblique; by default it is taken as oblique unless
+        the incoming slip is round-off (head-on: beta undefined).
+
+    Returns
+    -------
+    Rebound
+        e, beta (None if head-on), cot gamma, the spin after, and the velocities.
     """
     slip_in = v_in[0] + radius * omega_in
     slip_out = v_out[0] + radius * omega_out
@@ -55,6 +69,20 @@ def rebound_from_series(series: np.ndarray, radius: float = 1.0,
     After the contact the angular momentum is constant but the moment of
     inertia oscillates with the disk's vibrations (about 1 percent), so the
     angular velocity is taken as L / I0 with I0 the moment of inertia at rest.
+
+    Parameters
+    ----------
+    series : numpy.recarray
+        series.dat (``analysis.series.read_series``).
+    radius : float
+        The disk's radius R.
+    tangential : bool, optional
+        Whether the impact is oblique (see ``rebound``).
+
+    Returns
+    -------
+    Rebound
+        e, beta, cot gamma and the spin after the impact.
     """
     first, last = series[0], series[-1]
     inertia = first["Izz"]
@@ -63,7 +91,23 @@ def rebound_from_series(series: np.ndarray, radius: float = 1.0,
 
 
 def contact_window(series: np.ndarray) -> tuple[float, float]:
-    """First and last time at which a disk point was within the contact cutoff."""
+    """First and last time at which a disk point was within the contact cutoff.
+
+    Parameters
+    ----------
+    series : numpy.recarray
+        series.dat (``analysis.series.read_series``).
+
+    Returns
+    -------
+    start, end : float
+        Times, R/c, of the first and last rows with contact energy.
+
+    Raises
+    ------
+    ValueError
+        If the disk never came within the cutoff.
+    """
     touching = series["pe_contact"] > 0.0
     if not touching.any():
         raise ValueError("the disk never came within the contact cutoff of the wall")
@@ -81,7 +125,23 @@ def touches(series: np.ndarray) -> int:
 
 
 def side_clearance(series: np.ndarray, wall_width: float, radius: float = 1.0) -> float:
-    """Least distance, during contact, from the disk's centre to a fixed side of the wall."""
+    """Least distance, during contact, from the disk's centre to a fixed side of the wall.
+
+    Parameters
+    ----------
+    series : numpy.recarray
+        series.dat (``analysis.series.read_series``).
+    wall_width : float
+        The wall's width in units of R.
+    radius : float
+        The disk's radius R.
+
+    Returns
+    -------
+    float
+        The distance, in R (the unit of ``series``); below R the contact felt
+        the wall's end.
+    """
     start, end = contact_window(series)
     during = (series["time"] >= start) & (series["time"] <= end)
     return float((wall_width * radius / 2.0 - np.abs(series["x"][during])).min())
@@ -93,6 +153,21 @@ def energy_split(series: np.ndarray, energies: np.ndarray, mass: float) -> dict:
     Vibrations of the disk: its kinetic and spring energy less its rigid-body
     kinetic energy (translation, and rotation L^2 / 2 I0). Of the wall: all its
     energy (it starts at rest and unstressed).
+
+    Parameters
+    ----------
+    series : numpy.recarray
+        series.dat (``analysis.series.read_series``).
+    energies : numpy.recarray
+        energy.dat (``analysis.series.read_energies``).
+    mass : float
+        The disk's mass.
+
+    Returns
+    -------
+    dict
+        ``vibration_disk``, ``vibration_wall`` and ``energy_drift`` (change of
+        the total energy), each a fraction of the initial kinetic energy.
     """
     start, end = energies[0], energies[-1]
     first, last = series[0], series[-1]

@@ -13,7 +13,20 @@ from .series import read_energies, read_series
 
 
 def analyse_run(folder: Path | str) -> dict:
-    """The result of the run in ``folder`` (scene.json, run.json and the outputs)."""
+    """The result of the run in ``folder`` (scene.json, run.json and the outputs).
+
+    Parameters
+    ----------
+    folder : pathlib.Path or str
+        A finished run folder: scene.json, run.json, series.dat, energy.dat.
+
+    Returns
+    -------
+    dict
+        What result.json holds (README, "A run folder"): the scene, e, beta,
+        omega, the contact window, the energy split, how it was run and its
+        provenance.
+    """
     folder = Path(folder)
     scene = json.loads((folder / "scene.json").read_text())
     run = json.loads((folder / "run.json").read_text())

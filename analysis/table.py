@@ -26,7 +26,19 @@ NEAR_SIDE_SHARE = 0.1
 
 
 def near_the_ends(mean: dict) -> bool:
-    """Whether too many contacts at this lattice and angle felt the wall's ends."""
+    """Whether too many contacts at this lattice and angle felt the wall's ends.
+
+    Parameters
+    ----------
+    mean : dict
+        One row of ``mean_rows`` (needs ``near_side`` and ``samples``).
+
+    Returns
+    -------
+    bool
+        True if more than ``NEAR_SIDE_SHARE`` of the contacts came within
+        ``NEAR_SIDE`` of a fixed side.
+    """
     return mean["near_side"] > NEAR_SIDE_SHARE * mean["samples"]
 
 
@@ -47,7 +59,20 @@ def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
 
 
 def collect(folders: list[tuple[str, Path]]) -> list[dict]:
-    """Rows of every finished impact: (study lattice name, run folder) pairs."""
+    """Rows of every finished impact: (study lattice name, run folder) pairs.
+
+    Parameters
+    ----------
+    folders : list of tuple of (str, pathlib.Path)
+        The study's name for the lattice (e.g. ``square_nu0.3``) and the run
+        folder of each impact.
+
+    Returns
+    -------
+    list of dict
+        One impacts.csv row (``COLUMNS``) per folder that holds result.json;
+        unfinished or failed impacts are left out.
+    """
     rows = []
     for lattice, folder in folders:
         result = Path(folder) / "result.json"
@@ -67,7 +92,20 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
 
 
 def mean_rows(rows: list[dict]) -> list[dict]:
-    """Means and standard errors per study lattice and angle."""
+    """Means and standard errors per study lattice and angle.
+
+    Parameters
+    ----------
+    rows : list of dict
+        One row per impact (``collect``).
+
+    Returns
+    -------
+    list of dict
+        The rows of means.csv, sorted by lattice and angle: the mean and
+        standard error of e, beta, omega, ... (``e``, ``e_se``, ...), the number
+        of samples and ``near_side``.
+    """
     groups: dict[tuple, list[dict]] = {}
     for r in rows:
         groups.setdefault((r["study_lattice"], float(r["gamma_deg"])), []).append(r)
@@ -85,7 +123,20 @@ def mean_rows(rows: list[dict]) -> list[dict]:
 
 
 def groups(rows: list[dict], lattice: str) -> list[np.ndarray]:
-    """(psi, e, beta) per sample, one array per angle, for the fits."""
+    """(psi, e, beta) per sample, one array per angle, for the fits.
+
+    Parameters
+    ----------
+    rows : list of dict
+        One row per impact (``collect``).
+    lattice : str
+        The study's name of the lattice whose rows to take.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One (samples, 3) array per angle, in increasing angle.
+    """
     by_angle: dict[float, list] = {}
     for r in rows:
         if r["study_lattice"] == lattice:

@@ -29,12 +29,42 @@ from scipy.optimize import brentq
 
 
 def walton_beta(psi, e, mu: float, beta0: float, K: float = 3.0):
-    """Walton's beta: gross sliding, capped by the sticking plateau beta0."""
+    """Walton's beta: gross sliding, capped by the sticking plateau beta0.
+
+    Parameters
+    ----------
+    psi : float or array_like
+        cot gamma, |V_y| / V_x before the impact.
+    e : float or array_like
+        The coefficient of normal restitution at each psi.
+    mu : float
+        Friction coefficient.
+    beta0 : float
+        The plateau of beta at small angles of incidence.
+    K : float
+        1 + M R^2 / I (3 for a uniform disk).
+
+    Returns
+    -------
+    numpy.ndarray
+        min(beta0, -1 + mu (1 + e) K psi).
+    """
     return np.minimum(beta0, -1.0 + mu * (1.0 + np.asarray(e)) * K * np.asarray(psi))
 
 
 def eta_squared(nu: float) -> float:
-    """k_n / k_t of the compliant contact, from the Poisson ratio."""
+    """k_n / k_t of the compliant contact, from the Poisson ratio.
+
+    Parameters
+    ----------
+    nu : float
+        Poisson ratio.
+
+    Returns
+    -------
+    float
+        (2 - nu) / (2 (1 - nu)).
+    """
     return (2.0 - nu) / (2.0 * (1.0 - nu))
 
 
@@ -89,7 +119,20 @@ def _first_root(function, start: float, end: float, samples: int = 400) -> float
 
 
 def compliant_beta(psi: float, model: Compliant) -> float:
-    """beta of the compliant model, phase by phase in closed form."""
+    """beta of the compliant model, phase by phase in closed form.
+
+    Parameters
+    ----------
+    psi : float
+        cot gamma before the impact.
+    model : Compliant
+        The model's e, mu, nu and alpha.
+
+    Returns
+    -------
+    float
+        The tangential coefficient of restitution.
+    """
     alpha, mu, omega = model.alpha, model.mu, model.omega
     t, u, f = 0.0, 1.0 / psi, 0.0
     sticking = u <= mu * alpha / omega**2          # initial stick: tan gamma <= mu eta^2
@@ -133,6 +176,20 @@ def compliant_beta_integrated(psi, model: Compliant, steps: int = 200000) -> np.
     The spring's stretch is advanced with the contact point's velocity; if the
     spring force would exceed mu n, the slider gives way and the force is
     mu n (return mapping). Velocity-Verlet splitting, vectorised over psi.
+
+    Parameters
+    ----------
+    psi : float or array_like
+        cot gamma before the impact.
+    model : Compliant
+        The model's e, mu, nu and alpha.
+    steps : int
+        Time steps over the contact.
+
+    Returns
+    -------
+    numpy.ndarray
+        beta at each psi (a check of ``compliant_beta``).
     """
     psi = np.atleast_1d(np.asarray(psi, float))
     alpha, mu, omega = model.alpha, model.mu, model.omega

@@ -7,12 +7,10 @@ import platform
 import re
 import statistics
 import subprocess
-import sys
 from datetime import date
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
 
 def machine() -> str:

@@ -110,7 +110,26 @@ def settings_text(scene: Scene) -> str:
 
 
 def write_scene(scene: Scene, folder: Path | str, springs: str = "class2") -> Path:
-    """Write scene.data, scene.lmp and scene.json into ``folder``."""
+    """Write scene.data, scene.lmp and scene.json into ``folder``.
+
+    Also writes the contact's table into potentials/ if it is missing (the pair
+    variant of the contact reads it).
+
+    Parameters
+    ----------
+    scene : Scene
+        A built scene (``builder.scene.build_scene``).
+    folder : pathlib.Path or str
+        The run folder; created if missing.
+    springs : str
+        Bond style of the data file: ``class2`` (the model's quartic springs)
+        or ``harmonic``.
+
+    Returns
+    -------
+    pathlib.Path
+        ``folder``.
+    """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     info = dict(scene.info, springs=springs)

@@ -21,7 +21,20 @@ TABLE = Path(__file__).resolve().parents[1] / "calibration" / "materials.json"
 
 
 def square_poisson_ratio(k2_over_k1: float, angle_deg: float = 0.0) -> float:
-    """Poisson ratio of the square lattice pulled along (cos a, sin a) (MODEL.md)."""
+    """Poisson ratio of the square lattice pulled along (cos a, sin a) (MODEL.md).
+
+    Parameters
+    ----------
+    k2_over_k1 : float
+        Diagonal over nearest-neighbour spring constant.
+    angle_deg : float
+        Direction of the pull from the lattice's axis, degrees.
+
+    Returns
+    -------
+    float
+        The Poisson ratio of the continuum limit.
+    """
     k1, k2 = 1.0, k2_over_k1
     a = np.radians(angle_deg)
     s = (k1 * k1 - 4.0 * k2 * k2) * (np.cos(a) * np.sin(a)) ** 2
@@ -43,7 +56,25 @@ def square_wave_speed_factor(k2_over_k1: float, angle_deg: float = 0.0) -> float
 
 
 def square_ratio_for_poisson(nu: float, angle_deg: float = 0.0) -> float:
-    """k2/k1 that gives the square lattice the Poisson ratio ``nu`` along ``angle_deg``."""
+    """k2/k1 that gives the square lattice the Poisson ratio ``nu`` along ``angle_deg``.
+
+    Parameters
+    ----------
+    nu : float
+        The Poisson ratio wanted.
+    angle_deg : float
+        Direction of the pull from the lattice's axis, degrees.
+
+    Returns
+    -------
+    float
+        k2 / k1.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If no ratio gives ``nu`` along that direction.
+    """
     low, high = 1e-6, 1e3
     f = lambda r: square_poisson_ratio(r, angle_deg) - nu  # noqa: E731
     if f(low) * f(high) > 0:
@@ -59,7 +90,31 @@ def _table(path: str) -> tuple[dict, ...]:
 
 def calibrated(lattice: str, k2_over_k1: float | None = None, angle_deg: float = 0.0,
                table: Path | str = TABLE) -> dict:
-    """The table's entry for a lattice; InputError if it was not calibrated."""
+    """The table's entry for a lattice; InputError if it was not calibrated.
+
+    Parameters
+    ----------
+    lattice : str
+        ``random``, ``triangular`` or ``square``.
+    k2_over_k1 : float, optional
+        The square lattice's spring ratio (ignored for the others).
+    angle_deg : float
+        Direction of the calibration pull, degrees.
+    table : pathlib.Path or str
+        The materials table (default calibration/materials.json).
+
+    Returns
+    -------
+    dict
+        The entry: E, nu and c2 (the wave speed squared in units of
+        ka d^2 / m), with their standard deviations and errors, and the strips
+        they were measured on.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If the lattice is not in the table (``python -m calibration run``).
+    """
     ratio = k2_over_k1 if lattice == "square" else None
     if Path(table).exists():
         for entry in _table(str(table)):
@@ -74,6 +129,27 @@ def calibrated(lattice: str, k2_over_k1: float | None = None, angle_deg: float =
 
 def spring_constant(lattice: str, spacing: float, k2_over_k1: float | None = None,
                     wave_speed: float = 1.0, mass: float = 1.0) -> tuple[float, dict]:
-    """ka that gives the lattice the wave speed ``wave_speed``, and the table entry."""
+    """ka that gives the lattice the wave speed ``wave_speed``, and the table entry.
+
+    Parameters
+    ----------
+    lattice : str
+        ``random``, ``triangular`` or ``square``.
+    spacing : float
+        The lattice's mean spacing.
+    k2_over_k1 : float, optional
+        The square lattice's spring ratio.
+    wave_speed : float
+        The wave speed wanted, in units of c.
+    mass : float
+        Mass of a point.
+
+    Returns
+    -------
+    ka : float
+        The quadratic spring constant.
+    entry : dict
+        The lattice's entry of the materials table (``calibrated``).
+    """
     entry = calibrated(lattice, k2_over_k1)
     return wave_speed**2 * mass / (entry["c2"] * spacing**2), entry

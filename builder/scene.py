@@ -158,6 +158,16 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
 
     Cached, because a sweep builds the same sample for every angle, and the
     wall, which depends on the seed only, for every lattice of that seed.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene; only its lattice, seed, sizes and roughness matter here.
+
+    Returns
+    -------
+    disk, wall : Body
+        Points, springs and surfaces of each body, unscaled and unplaced.
     """
     return (_disk(spec.lattice, spec.seed, spec.n_disk, spec.roughness, spec.k2_over_k1),
             _wall(spec.seed, spec.wall_points, spec.wall_width, spec.wall_height, spec.roughness,
@@ -205,7 +215,24 @@ def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndar
 
 
 def build_scene(spec: SceneSpec) -> Scene:
-    """Build, scale and place both bodies of a scene."""
+    """Build, scale and place both bodies of a scene.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene: lattice, seed, angle, speed, sizes, contact; validated first.
+
+    Returns
+    -------
+    Scene
+        Atoms (positions, velocities, types, molecules) and springs in LAMMPS
+        order, and ``info``, the derived quantities scene.json holds.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If ``spec`` is invalid or its lattice is not calibrated.
+    """
     spec.validate()
     R = spec.radius
     disk, wall = build_bodies(spec)

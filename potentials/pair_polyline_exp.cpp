@@ -1,6 +1,23 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/
+
+   Copyright (2026) the contributors to the oblique-impact workflow.
+   This file is not part of the LAMMPS distribution. It is written to be
+   compiled against LAMMPS and is, like LAMMPS, free software: you may
+   redistribute and modify it under the GNU General Public License as
+   published by the Free Software Foundation, version 2 or (at your
+   option) any later version. It comes WITHOUT ANY WARRANTY; see the
+   LICENSE file in the top-level directory of the oblique-impact workflow.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: the oblique-impact workflow project
+     (pair style polyline/exp; see potentials/README.md)
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    Pair style polyline/exp: exponential repulsion of points from a polyline.
-   Part of the oblique-impact workflow; see potentials/README.md.
 
    A point p of a "point" type is repelled by the closest feature (segment
    interior or vertex) of a polyline whose vertices are the atoms with tags
@@ -18,7 +35,6 @@
 #include "pair_polyline_exp.h"
 
 #include "atom.h"
-#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
@@ -50,6 +66,9 @@ PairPolylineExp::PairPolylineExp(LAMMPS *lmp) : Pair(lmp), active(nullptr)
   single_enable = 0;
   restartinfo = 0;
   manybody_flag = 1;
+  // compute() tallies the virial contact by contact (ev_tally, ev_tally3) and
+  // never calls virial_fdotr_compute(): without this flag, Pair::ev_setup()
+  // would leave the global virial to that f dot r sum, and so at zero
   no_virial_fdotr_compute = 1;
 
   a = v0 = cut = reach = 0.0;
@@ -110,7 +129,9 @@ void PairPolylineExp::compute(int eflag, int vflag)
       const int j = jlist[jj] & NEIGHMASK;
       if (!active[itype][type[j]]) continue;
       if (tag[j] < first || tag[j] > last)
-        error->one(FLERR, "Pair polyline/exp: atom {} has a vertex type but is not on the polyline (tags {}..{})",
+        error->one(FLERR,
+                   "Pair polyline/exp: atom {} has a vertex type but is not on the polyline "
+                   "(tags {}..{})",
                    tag[j], first, last);
 
       const int ends[2][2] = {{vertex(tag[j] - 1, i), j}, {j, vertex(tag[j] + 1, i)}};
@@ -124,7 +145,8 @@ void PairPolylineExp::compute(int eflag, int vflag)
         const double sy = x[jb][1] - x[ja][1];
         const double ss = sx * sx + sy * sy;
         if (ss > reach_sq)
-          error->one(FLERR, "Pair polyline/exp: segment {}-{} is {} long, more than reach {}, "
+          error->one(FLERR,
+                     "Pair polyline/exp: segment {}-{} is {} long, more than reach {}, "
                      "at step {}: the run went unstable, or reach is too small",
                      tag[ja], tag[jb], sqrt(ss), reach, update->ntimestep);
         const double ux = x[i][0] - x[ja][0];
@@ -151,7 +173,8 @@ void PairPolylineExp::compute(int eflag, int vflag)
 
     const double l = sqrt(best);
     if (l == 0.0 || crossings % 2)
-      error->one(FLERR, "Pair polyline/exp: atom {} is inside the wall at step {} "
+      error->one(FLERR,
+                 "Pair polyline/exp: atom {} is inside the wall at step {} "
                  "({} from the surface, near vertex {})",
                  tag[i], update->ntimestep, l, tag[w1]);
 
@@ -230,8 +253,10 @@ int PairPolylineExp::vertex(tagint t, int i)
   if (t < first || t > last) return -1;
   const int m = atom->map(t);
   if (m < 0)
-    error->one(FLERR, "Pair polyline/exp: vertex {} is not on this rank; "
-               "raise comm_modify cutoff to at least cutoff + 2 reach = {}", t, cut + 2.0 * reach);
+    error->one(FLERR,
+               "Pair polyline/exp: vertex {} is not on this rank; "
+               "raise comm_modify cutoff to at least cutoff + 2 reach = {}",
+               t, cut + 2.0 * reach);
   return domain->closest_image(i, m);
 }
 
@@ -255,7 +280,8 @@ void PairPolylineExp::allocate()
 void PairPolylineExp::settings(int narg, char **arg)
 {
   if (narg < 5)
-    error->all(FLERR, "Illegal pair_style polyline/exp command: expected "
+    error->all(FLERR,
+               "Illegal pair_style polyline/exp command: expected "
                "a V0 cutoff first last [reach L] [rule lever|gradient]");
 
   a = utils::numeric(FLERR, arg[0], false, lmp);
@@ -268,14 +294,25 @@ void PairPolylineExp::settings(int narg, char **arg)
 
   int iarg = 5;
   while (iarg < narg) {
-    if (strcmp(arg[iarg], "reach") == 0 && iarg + 1 < narg) {
+    // a keyword without its value gets the message of utils::missing_cmd_args(),
+    // which the 29 Sep 2021 headers (Debian's LAMMPS) do not have yet
+    if (strcmp(arg[iarg], "reach") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal pair_style polyline/exp reach command: missing argument(s)");
       reach = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    } else if (strcmp(arg[iarg], "rule") == 0 && iarg + 1 < narg) {
-      if (strcmp(arg[iarg + 1], "lever") == 0) rule = LEVER;
-      else if (strcmp(arg[iarg + 1], "gradient") == 0) rule = GRADIENT;
-      else error->all(FLERR, "Pair polyline/exp: rule must be lever or gradient, got {}", arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "rule") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal pair_style polyline/exp rule command: missing argument(s)");
+      if (strcmp(arg[iarg + 1], "lever") == 0)
+        rule = LEVER;
+      else if (strcmp(arg[iarg + 1], "gradient") == 0)
+        rule = GRADIENT;
+      else
+        error->all(FLERR, "Pair polyline/exp: rule must be lever or gradient, got {}",
+                   arg[iarg + 1]);
     } else {
-      error->all(FLERR, "Pair polyline/exp: unknown keyword {} (allowed: reach L, rule lever|gradient)",
+      error->all(FLERR,
+                 "Pair polyline/exp: unknown keyword {} (allowed: reach L, rule lever|gradient)",
                  arg[iarg]);
     }
     iarg += 2;
@@ -286,7 +323,8 @@ void PairPolylineExp::settings(int narg, char **arg)
   if (cut <= 0.0) error->all(FLERR, "Pair polyline/exp: cutoff must be > 0, got {}", cut);
   if (reach <= 0.0) error->all(FLERR, "Pair polyline/exp: reach must be > 0, got {}", reach);
   if (first < 1 || last <= first)
-    error->all(FLERR, "Pair polyline/exp: need 1 <= first < last, got first {} last {}", first, last);
+    error->all(FLERR, "Pair polyline/exp: need 1 <= first < last, got first {} last {}", first,
+               last);
 }
 
 /* ----------------------------------------------------------------------
@@ -297,7 +335,8 @@ void PairPolylineExp::settings(int narg, char **arg)
 void PairPolylineExp::coeff(int narg, char **arg)
 {
   if (narg != 2)
-    error->all(FLERR, "Incorrect args for pair coefficients: pair_coeff I J "
+    error->all(FLERR,
+               "Incorrect args for pair coefficients: pair_coeff I J "
                "(I: types of the points, J: types of the polyline's vertices)");
   if (!allocated) allocate();
 
@@ -320,10 +359,11 @@ void PairPolylineExp::init_style()
     error->all(FLERR, "Pair polyline/exp requires atom IDs and an atom map");
   if (force->newton_pair == 0) error->all(FLERR, "Pair polyline/exp requires newton pair on");
 
-  // each point needs all its neighbours, owned or ghost
 #ifdef POLYLINE_EXP_ADD_REQUEST
+  // each point needs all its neighbours, owned or ghost
   neighbor->add_request(this, NeighConst::REQ_FULL);
 #else
+  // the same full list, requested the way LAMMPS did before add_request()
   const int irequest = neighbor->request(this, instance_me);
   neighbor->requests[irequest]->half = 0;
   neighbor->requests[irequest]->full = 1;

@@ -1,6 +1,20 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/
+
+   Copyright (2026) the contributors to the oblique-impact workflow.
+   This file is not part of the LAMMPS distribution. It is written to be
+   compiled against LAMMPS and is, like LAMMPS, free software: you may
+   redistribute and modify it under the GNU General Public License as
+   published by the Free Software Foundation, version 2 or (at your
+   option) any later version. It comes WITHOUT ANY WARRANTY; see the
+   LICENSE file in the top-level directory of the oblique-impact workflow.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    Pair style polyline/exp: exponential repulsion of points from a polyline.
-   Part of the oblique-impact workflow; see potentials/README.md.
+   Contributing author: the oblique-impact workflow project.
+   See potentials/README.md.
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -29,14 +43,14 @@ class PairPolylineExp : public Pair {
   double init_one(int, int) override;
 
  protected:
-  double a;          // decay rate of the repulsion, 1/length
-  double v0;         // energy scale: E(l) = v0 exp(-a l)
-  double cut;        // contact cutoff on the distance l to the polyline
-  double reach;      // longest segment of the polyline
-  tagint first;      // tags first..last are the polyline's vertices, in order
+  double a;        // decay rate of the repulsion, 1/length
+  double v0;       // energy scale: E(l) = v0 exp(-a l)
+  double cut;      // contact cutoff on the distance l to the polyline
+  double reach;    // longest segment of the polyline
+  tagint first;    // tags first..last are the polyline's vertices, in order
   tagint last;
-  int rule;          // LEVER or GRADIENT
-  int **active;      // active[itype][jtype]: points of itype feel vertices of jtype
+  int rule;        // LEVER or GRADIENT
+  int **active;    // active[itype][jtype]: points of itype feel vertices of jtype
 
   std::vector<tagint> seen;    // segments already examined for the current point
 

@@ -1,4 +1,22 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/
+
+   Copyright (2026) the contributors to the oblique-impact workflow.
+   This file is not part of the LAMMPS distribution. It is written to be
+   compiled against LAMMPS and is, like LAMMPS, free software: you may
+   redistribute and modify it under the GNU General Public License as
+   published by the Free Software Foundation, version 2 or (at your
+   option) any later version. It comes WITHOUT ANY WARRANTY; see the
+   LICENSE file in the top-level directory of the oblique-impact workflow.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: the oblique-impact workflow project
+     (pair style polyline/exp; see potentials/README.md)
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    Run-time registration of pair style polyline/exp into a LAMMPS without
    the PLUGIN package (Debian's 29 Sep 2021 build): the creator goes into
    the instance's pair style map. Call it again after "clear", which

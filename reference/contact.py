@@ -20,7 +20,24 @@ class ContactForces:
 
 def closest_features(points: np.ndarray, vertices: np.ndarray):
     """For each point: index k of the closest segment (vertices k, k+1), its
-    parameter t in [0, 1], and the vector from the closest point to the point."""
+    parameter t in [0, 1], and the vector from the closest point to the point.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        (n, 2) points.
+    vertices : numpy.ndarray
+        (m, 2) vertices of the polyline, in order.
+
+    Returns
+    -------
+    k : numpy.ndarray
+        (n,) index of each point's closest segment.
+    t : numpy.ndarray
+        (n,) the closest point's parameter on it, w_k + t (w_k+1 - w_k).
+    away : numpy.ndarray
+        (n, 2) from the closest point to the point.
+    """
     starts, ends = vertices[:-1], vertices[1:]
     seg = ends - starts
     rel = points[:, None, :] - starts[None, :, :]
@@ -33,7 +50,20 @@ def closest_features(points: np.ndarray, vertices: np.ndarray):
 
 def inside(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
     """True for points below the polyline: an odd number of crossings of the
-    vertical ray upwards from the point (the polyline may fold)."""
+    vertical ray upwards from the point (the polyline may fold).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        (n, 2) points.
+    vertices : numpy.ndarray
+        (m, 2) vertices of the polyline, in order.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) booleans.
+    """
     xa, xb = vertices[:-1, 0], vertices[1:, 0]
     ya, yb = vertices[:-1, 1], vertices[1:, 1]
     px, py = points[:, 0:1], points[:, 1:2]
@@ -51,6 +81,31 @@ def polyline_contact(points: np.ndarray, vertices: np.ndarray, a: float, v0: flo
     distance to its closest feature. ``rule`` "lever" shares the reaction by the
     lever rule; "gradient" differentiates E by the chain rule
     through the closest point (the two agree: envelope theorem).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        (n, 2) points (the disk's surface).
+    vertices : numpy.ndarray
+        (m, 2) vertices of the polyline (the wall's surface), in order.
+    a : float
+        Decay rate of the repulsion, 1 / length.
+    v0 : float
+        Energy scale.
+    cutoff : float
+        Range of the contact.
+    rule : str
+        ``lever`` or ``gradient``.
+
+    Returns
+    -------
+    ContactForces
+        The energy and the forces on the points and on the vertices.
+
+    Raises
+    ------
+    InsideWall
+        If a point within the cutoff is inside the body below the polyline.
     """
     k, t, away = closest_features(points, vertices)
     dist = np.linalg.norm(away, axis=1)

@@ -39,7 +39,20 @@ def _sections(text: str) -> dict[str, list[str]]:
 
 
 def read_data(path: Path | str) -> System:
-    """A System from a data file; raises FileNotFoundError or ValueError."""
+    """A System from a data file; raises FileNotFoundError or ValueError.
+
+    Parameters
+    ----------
+    path : pathlib.Path or str
+        A LAMMPS data file of this project (scene.data, strip.data): atom style
+        bond, class2 or harmonic bonds.
+
+    Returns
+    -------
+    System
+        Positions, velocities, masses, types, molecules and springs, indexed by
+        atom ID - 1.
+    """
     sections = _sections(Path(path).read_text())
     for needed in ("Masses", "Atoms", "Bonds", "Bond Coeffs"):
         if needed not in sections:

@@ -141,7 +141,25 @@ def advance(model: Model, scheme: str, dt: float, steps: int):
 
 
 def simulate(folder: Path | str, options: ReferenceOptions) -> float:
-    """Integrate the scene in ``folder``; writes series.dat and energy.dat."""
+    """Integrate the scene in ``folder``; writes series.dat and energy.dat.
+
+    Parameters
+    ----------
+    folder : pathlib.Path or str
+        A scene folder (scene.data, scene.json).
+    options : ReferenceOptions
+        Time step, integrator, contact and outputs.
+
+    Returns
+    -------
+    float
+        Wall time, seconds.
+
+    Raises
+    ------
+    Unstable
+        If the run blows up or a disk point goes into the wall.
+    """
     options.validate()
     folder = Path(folder)
     model = load_model(folder, options)
@@ -181,7 +199,20 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
 
 
 def run_reference(folder: Path | str, options: ReferenceOptions) -> dict:
-    """Simulate, then write run.json and result.json like a LAMMPS run."""
+    """Simulate, then write run.json and result.json like a LAMMPS run.
+
+    Parameters
+    ----------
+    folder : pathlib.Path or str
+        A scene folder (scene.data, scene.json); earlier outputs are removed.
+    options : ReferenceOptions
+        Time step, integrator, contact and outputs.
+
+    Returns
+    -------
+    dict
+        The result (``analysis.result.analyse_run``), as written to result.json.
+    """
     from runner.impact import git_revision
 
     folder = Path(folder)

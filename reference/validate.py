@@ -44,7 +44,22 @@ def scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
 
 
 def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REFERENCE) -> dict:
-    """The reference result for ``spec``, reusing a finished run with the same options."""
+    """The reference result for ``spec``, reusing a finished run with the same options.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene.
+    folder : pathlib.Path
+        Its run folder.
+    options : ReferenceOptions
+        How the reference integrates it.
+
+    Returns
+    -------
+    dict
+        The reference's result.json.
+    """
     folder = Path(folder)
     done = folder / "result.json"
     if done.exists():
@@ -70,7 +85,22 @@ def reference_runs(specs: dict[str, SceneSpec], out: Path, workers: int = 2,
 
 
 def trajectory_difference(lammps: Path, reference: Path) -> dict[str, float]:
-    """Largest differences during contact of the disk's centre, velocity and spin."""
+    """Largest differences during contact of the disk's centre, velocity and spin.
+
+    Parameters
+    ----------
+    lammps : pathlib.Path
+        A LAMMPS run folder (series.dat).
+    reference : pathlib.Path
+        The reference's run folder of the same scene.
+
+    Returns
+    -------
+    dict
+        ``position``, ``velocity`` and ``omega``: the largest differences over
+        the reference's contact window, LAMMPS's rows against the reference
+        interpolated to their times.
+    """
     ours, theirs = read_series(lammps / "series.dat"), read_series(reference / "series.dat")
     start, end = contact_window(theirs)
     during = (ours["time"] >= start) & (ours["time"] <= end)
@@ -118,7 +148,24 @@ def perturbed_spread(spec: SceneSpec, folder: Path, options: RunOptions, copies:
 
 def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6) -> dict:
     """Both tables of make validate: smooth scenes (accuracy), rough scenes
-    (implementation and chaos)."""
+    (implementation and chaos).
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        Where the runs go (runs/validation); finished reference runs are reused.
+    options : RunOptions
+        How LAMMPS runs the scenes.
+    n_disk : int
+        Points in each disk.
+    copies : int
+        Perturbed copies of each rough scene, for the chaotic spread.
+
+    Returns
+    -------
+    dict
+        ``smooth`` and ``rough``: one row per scene, as ``markdown`` prints them.
+    """
     smooth_specs = scenes(n_disk, roughness=0.0)
     smooth_refs = reference_runs(smooth_specs, out / "smooth")
     smooth = {name: compare(spec, out / "smooth" / name / "lammps", options, smooth_refs[name],

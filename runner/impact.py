@@ -21,7 +21,13 @@ RUN_OUTPUTS = ("log.lammps", "series.dat", "energy.dat", "dump.lammpstrj", "run.
 
 
 def git_revision() -> str:
-    """The project's commit, with '+dirty' if the work tree has changes."""
+    """The project's commit, with '+dirty' if the work tree has changes.
+
+    Returns
+    -------
+    str
+        A 12-digit abbreviated commit hash, or ``unknown`` outside a git clone.
+    """
     try:
         head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
                               capture_output=True, text=True, check=True).stdout.strip()
@@ -40,6 +46,28 @@ def run_scene(folder: Path | str, options: RunOptions,
     atomically, and only if the run finished and every number is finite.
     ``deck_overrides`` sets deck variables that are not run options (the
     benchmarks' early_stop, stop_slack, ...); run.json records them.
+
+    Parameters
+    ----------
+    folder : pathlib.Path or str
+        A scene folder (``builder.lammps_data.write_scene``); no spaces in its path.
+    options : RunOptions
+        How to run it: time step, integrator, contact, route (lmp or the lammps
+        module), MPI ranks, outputs.
+    deck_overrides : dict of str to str, optional
+        Further ``-var`` settings of decks/impact.lmp.
+
+    Returns
+    -------
+    dict
+        The result (``analysis.result.analyse_run``), as written to result.json.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If the folder or the options are invalid.
+    runner.lammps_run.LammpsError
+        If LAMMPS stops with an error (its message).
     """
     options.validate()
     folder = Path(folder).resolve()
@@ -78,7 +106,22 @@ def run_scene(folder: Path | str, options: RunOptions,
 
 
 def run_impact(spec: SceneSpec, folder: Path | str, options: RunOptions) -> dict:
-    """Build the scene of ``spec`` into ``folder`` and run it."""
+    """Build the scene of ``spec`` into ``folder`` and run it.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene (``builder.scene.SceneSpec``).
+    folder : pathlib.Path or str
+        The run folder; created if missing.
+    options : RunOptions
+        How to run it (``runner.options.RunOptions``).
+
+    Returns
+    -------
+    dict
+        The result, as written to result.json (``run_scene``).
+    """
     spec.validate()
     options.validate()
     folder = Path(folder)

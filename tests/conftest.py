@@ -1,31 +1,13 @@
-"""Shared fixtures: small scenes, LAMMPS instances with the project's contact style."""
+"""Shared fixtures: small scenes. Helpers that are not fixtures are in
+tests/helpers.py."""
 
 from __future__ import annotations
 
-import ctypes
-import sys
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from builder.lammps_data import write_scene  # noqa: E402
-from builder.scene import SceneSpec, build_scene  # noqa: E402
-
-STYLE_LIBRARY = ROOT / "build" / "libpolyline_exp.so"
-# Small scenes keep the suite fast; the physics tests say when they need the full size.
-SMALL = dict(n_disk=200)
-
-
-def new_lammps(*args: str):
-    """A quiet LAMMPS instance with pair style polyline/exp registered."""
-    from lammps import lammps
-
-    lmp = lammps(cmdargs=["-screen", "none", "-log", "none", "-nocite", *args])
-    ctypes.CDLL(str(STYLE_LIBRARY)).polyline_exp_register(lmp.lmp)
-    return lmp
+from builder.lammps_data import write_scene
+from builder.scene import SceneSpec, build_scene
+from tests.helpers import SMALL
 
 
 @pytest.fixture(scope="session")

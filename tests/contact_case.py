@@ -9,8 +9,8 @@ import numpy as np
 
 from reference.contact import inside
 from runner.lammps_run import mpi_environment, mpi_launcher
+from tests.helpers import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "tests" / "decks" / "contact_forces.lmp"
 A, V0, CUTOFF = 300.0, 150.0, 0.0673
 
@@ -64,3 +64,14 @@ def lammps_forces(tmp: Path, vertices, points, rule="lever", nprocs=1, command=N
     f = np.loadtxt(out, skiprows=9)[:, 1:]
     energy = float(Path(f"{out}.energy").read_text())
     return energy, f[:len(vertices)], f[len(vertices):]
+
+
+
+def lammps_virial(tmp: Path, vertices, points, rule="lever", nprocs=1):
+    """Forces (on vertices, on points) and the pair's virial (xx, yy, xy) as
+    LAMMPS tallies it, globally (compute pressure) and summed over the atoms
+    (compute stress/atom): the deck writes both beside the forces."""
+    _, on_vertices, on_points = lammps_forces(tmp, vertices, points, rule, nprocs)
+    path = tmp / f"forces_{rule}_{nprocs}.dump.virial"
+    values = np.array(path.read_text().split(), dtype=float)
+    return on_vertices, on_points, values[:3], values[3:]

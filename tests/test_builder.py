@@ -15,7 +15,7 @@ from builder.errors import InputError
 from builder.geometry import distance_to_polyline
 from builder.scene import DISK, SceneSpec, build_scene
 
-from conftest import ROOT, SMALL
+from tests.helpers import ROOT, SMALL
 
 
 def make(lattice: str, seed: int = 3, n: int = 800):

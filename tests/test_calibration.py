@@ -17,7 +17,7 @@ from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch
 from calibration.table import RANDOM_STRIP, stretch_all
 
-from conftest import SMALL
+from tests.helpers import SMALL
 
 
 def test_triangular_lattice(tmp_path):

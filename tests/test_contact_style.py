@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import subprocess
+
 import numpy as np
 import pytest
 
 from reference.contact import polyline_contact
 
-from contact_case import A, CUTOFF, V0, lammps_forces, random_case
+from tests.contact_case import A, CUTOFF, V0, lammps_forces, random_case
+from tests.helpers import ROOT
 
 
 def relative(a: np.ndarray, b: np.ndarray) -> float:
@@ -126,3 +129,22 @@ def test_one_and_two_ranks_give_the_same_forces(tmp_path):
     assert np.any(points[:, 0] < 0) and np.any(points[:, 0] > 0)
     assert relative(two[1], one[1]) < 1e-12 and relative(two[2], one[2]) < 1e-12
     assert two[0] == pytest.approx(one[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("keywords, message", [
+    ("reach", "Illegal pair_style polyline/exp reach command: missing argument(s)"),
+    ("reach 0.25 rule", "Illegal pair_style polyline/exp rule command: missing argument(s)"),
+    ("bogus 1", "Pair polyline/exp: unknown keyword bogus"),
+])
+def test_pair_style_arguments_are_checked(tmp_path, keywords, message):
+    """A keyword without its value is reported as such (LAMMPS's wording for
+    missing arguments), not as an unknown keyword."""
+    deck = tmp_path / "in.args"
+    deck.write_text("units lj\ndimension 2\natom_style bond\n"
+                    "region box block 0 1 0 1 -0.5 0.5\ncreate_box 3 box\n"
+                    "include decks/polyline_exp.lmp\n"
+                    f"pair_style polyline/exp {A} {V0} {CUTOFF} 1 2 {keywords}\n")
+    proc = subprocess.run(["lmp", "-in", str(deck), "-log", "none", "-nocite"], cwd=ROOT,
+                          capture_output=True, text=True)
+    assert proc.returncode != 0
+    assert f"ERROR: {message}" in proc.stdout

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import new_lammps
+from tests.helpers import new_lammps
 
 
 @pytest.fixture(scope="module")

@@ -17,7 +17,7 @@ from runner.impact import run_impact, run_scene
 from runner.lammps_run import LammpsError, lammps_error
 from runner.options import RunOptions
 
-from conftest import ROOT, SMALL, new_lammps
+from tests.helpers import ROOT, SMALL, new_lammps
 
 
 def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np.ndarray]:

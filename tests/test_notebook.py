@@ -8,7 +8,7 @@ import os
 import matplotlib
 import numpy as np
 
-from conftest import ROOT
+from tests.helpers import ROOT
 
 
 def test_notebook_cells_run(monkeypatch, tmp_path):

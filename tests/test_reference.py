@@ -11,7 +11,7 @@ from reference.run import ReferenceOptions, Stepper, advance, load_model, run_re
 from runner.impact import run_scene
 from runner.options import RunOptions
 
-from conftest import SMALL
+from tests.helpers import SMALL
 
 
 @pytest.fixture(scope="module")

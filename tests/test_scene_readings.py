@@ -13,7 +13,7 @@ from builder.bodies import triangular_spacing
 from builder.materials import calibrated
 from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
 
-from conftest import ROOT, SMALL
+from tests.helpers import ROOT, SMALL
 
 WALL_AREA = 8.0 * 2.0
 

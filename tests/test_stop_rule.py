@@ -11,7 +11,7 @@ from runner.impact import run_scene
 from runner.options import RunOptions
 from runner.stop_rule import disk_vibration, future_contact_free
 
-from conftest import SMALL
+from tests.helpers import SMALL
 
 CUTOFF, MARGIN = 0.07, 0.01
 ANGLES = np.linspace(0.0, 2 * np.pi, 60, endpoint=False)

@@ -14,7 +14,7 @@ import pytest
 from runner.pool import run_jobs
 from runner.study import Study, job_groups
 
-from conftest import ROOT
+from tests.helpers import ROOT
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
 COMPARED = ("study_lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta", "omega", "steps",
