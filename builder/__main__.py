@@ -8,7 +8,7 @@ from pathlib import Path
 from .cli import OneLineParser, add_scene_arguments, count, positive_float, spec_from_args
 from .contact_table import POINTS, table_name, table_text
 from .errors import BuildError, InputError
-from .lammps_data import SPRING_STYLES, write_scene
+from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES, write_scene
 from .scene import build_scene
 
 
@@ -21,8 +21,10 @@ def main(argv: list[str] | None = None) -> int:
                                 description="Build a disk and a wall placed for an oblique "
                                             "impact and write them for decks/impact.lmp.")
     add_scene_arguments(scene)
-    scene.add_argument("--springs", choices=SPRING_STYLES, default="class2",
-                       help="bond style: class2 (the model's quartic springs) or harmonic")
+    scene.add_argument("--springs", choices=SPRING_STYLES, default=DEFAULT_SPRINGS,
+                       help="bond style: harmonic/quartic (the model's quartic springs, the "
+                            "project's own style; default), class2 (the same springs, LAMMPS's "
+                            "built-in style) or harmonic (no quartic)")
     scene.add_argument("--out", required=True, help="folder to write into")
 
     table = commands.add_parser("table", help="write the pair-variant contact table",

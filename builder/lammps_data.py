@@ -19,7 +19,10 @@ from .scene import Scene, TYPE_NAMES
 # Decks run from the project's root and find the contact tables here.
 POTENTIALS = Path(__file__).resolve().parents[1] / "potentials"
 
-SPRING_STYLES = ("class2", "harmonic")
+SPRING_STYLES = ("harmonic/quartic", "class2", "harmonic")
+# The project's own bond style (potentials/bond_harmonic_quartic.cpp): the same
+# springs as class2 at a third of the cost (docs/benchmarks/spring_cost.md).
+DEFAULT_SPRINGS = "harmonic/quartic"
 
 
 def _rows(*columns) -> str:
@@ -30,11 +33,15 @@ def _rows(*columns) -> str:
 
 def bond_coeff_columns(r0: np.ndarray, ka: np.ndarray, kb_over_ka: float,
                        springs: str) -> list[np.ndarray]:
-    """Bond coefficients per spring: the quartic exactly through class2.
+    """Bond coefficients per spring, for the bond style ``springs``.
 
-    class2: E = K2 x^2 + K3 x^3 + K4 x^4, so K2 = ka/2, K3 = 0, K4 = kb/4 gives
-    V(x) = ka x^2 / 2 + kb x^4 / 4. harmonic: E = K x^2, K = ka/2 (no quartic).
+    harmonic/quartic (potentials/bond_harmonic_quartic.cpp): r0 ka kb, the
+    model's V(x) = ka x^2 / 2 + kb x^4 / 4 itself. class2: E = K2 x^2 + K3 x^3
+    + K4 x^4, so K2 = ka/2, K3 = 0, K4 = kb/4 gives the same V (the halving and
+    quartering are exact in binary). harmonic: E = K x^2, K = ka/2 (no quartic).
     """
+    if springs == "harmonic/quartic":
+        return [r0, ka, kb_over_ka * ka]
     if springs == "class2":
         return [r0, ka / 2.0, np.zeros_like(r0), kb_over_ka * ka / 4.0]
     if springs == "harmonic":
@@ -71,7 +78,7 @@ def network_data_text(title: str, positions: np.ndarray, velocities: np.ndarray,
     return "".join(parts)
 
 
-def data_file_text(scene: Scene, springs: str = "class2") -> str:
+def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     spec = scene.spec
     title = (f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
              f"vn={spec.vn!r} springs={springs}")
@@ -80,7 +87,7 @@ def data_file_text(scene: Scene, springs: str = "class2") -> str:
                              pad=2.0 * scene.info["disk_spacing"])
 
 
-def settings_text(scene: Scene) -> str:
+def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     """A LAMMPS include file with the scene's settings, as index variables."""
     info = scene.info
     table = f"potentials/{table_name(info['contact']['a'], info['contact']['V0'])}"
@@ -106,10 +113,11 @@ def settings_text(scene: Scene) -> str:
         f"variable wall_first  index {info['wall_row_tags'][0]}\n"
         f"variable wall_last   index {info['wall_row_tags'][1]}\n"
         f"variable table       index {table}\n"
+        f"variable springs     index {springs}\n"
     )
 
 
-def write_scene(scene: Scene, folder: Path | str, springs: str = "class2") -> Path:
+def write_scene(scene: Scene, folder: Path | str, springs: str = DEFAULT_SPRINGS) -> Path:
     """Write scene.data, scene.lmp and scene.json into ``folder``.
 
     Also writes the contact's table into potentials/ if it is missing (the pair
@@ -122,8 +130,8 @@ def write_scene(scene: Scene, folder: Path | str, springs: str = "class2") -> Pa
     folder : pathlib.Path or str
         The run folder; created if missing.
     springs : str
-        Bond style of the data file: ``class2`` (the model's quartic springs)
-        or ``harmonic``.
+        Bond style of the data file: ``harmonic/quartic`` (the model's
+        springs, the default), ``class2`` (the same springs) or ``harmonic``.
 
     Returns
     -------
@@ -135,6 +143,6 @@ def write_scene(scene: Scene, folder: Path | str, springs: str = "class2") -> Pa
     info = dict(scene.info, springs=springs)
     ensure_table(POTENTIALS, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
     (folder / "scene.data").write_text(data_file_text(scene, springs))
-    (folder / "scene.lmp").write_text(settings_text(scene))
+    (folder / "scene.lmp").write_text(settings_text(scene, springs))
     (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")
     return folder

@@ -1,4 +1,5 @@
-"""Reads the LAMMPS data files the builder writes (atom_style bond, 2-D, class2)."""
+"""Reads the LAMMPS data files the builder writes (atom_style bond, 2-D; springs
+harmonic/quartic, class2 or harmonic)."""
 
 from __future__ import annotations
 
@@ -71,7 +72,11 @@ def read_data(path: Path | str) -> System:
         v[vel[:, 0].astype(int) - 1] = vel[:, 1:3]
     coeffs = np.array([r.split() for r in sections["Bond Coeffs"]], float)
     coeffs = coeffs[np.argsort(coeffs[:, 0])]
-    if coeffs.shape[1] == 3:                # harmonic: K r0, i.e. class2 with K3 = K4 = 0
+    if coeffs.shape[1] == 4:                # harmonic/quartic: r0 ka kb, class2 with ka/2, 0, kb/4
+        zero = np.zeros(len(coeffs))
+        coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 1], coeffs[:, 2] / 2.0, zero,
+                                  coeffs[:, 3] / 4.0])
+    elif coeffs.shape[1] == 3:              # harmonic: K r0, i.e. class2 with K3 = K4 = 0
         zero = np.zeros(len(coeffs))
         coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 2], coeffs[:, 1], zero, zero])
     bonds = np.array([r.split() for r in sections["Bonds"]], int)

@@ -26,7 +26,9 @@ def add_run_arguments(parser) -> None:
                             "pair: the same exponential between points")
     group.add_argument("--rule", choices=RULES, default=defaults.rule,
                        help="segment contact: lever rule (default) or explicit gradient")
-    group.add_argument("--springs", choices=SPRINGS, default=defaults.springs)
+    group.add_argument("--springs", choices=SPRINGS, default=defaults.springs,
+                       help="bond style: harmonic/quartic (the project's own, default) or "
+                            "class2, the same quartic springs; harmonic: no quartic")
     group.add_argument("--tmax", type=positive_float, default=defaults.tmax,
                        help="stop with an error if the disk has not left by then (R/c)")
     group.add_argument("--dump-every", type=count(0), default=0,

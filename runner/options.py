@@ -5,11 +5,12 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from builder.errors import InputError, require_choice, require_positive
+from builder.lammps_data import DEFAULT_SPRINGS, SPRING_STYLES
 
 INTEGRATORS = ("verlet", "respa")
 CONTACTS = ("segment", "pair")
 RULES = ("lever", "gradient")
-SPRINGS = ("class2", "harmonic")
+SPRINGS = SPRING_STYLES
 ROUTES = ("lmp", "python")
 
 
@@ -20,7 +21,8 @@ class RunOptions:
     nrespa: int = 2              # respa: spring steps per step
     contact: str = "segment"     # segment: the paper's contact; pair: the design card
     rule: str = "lever"          # segment contact: lever rule or explicit gradient
-    springs: str = "class2"      # class2: the model's quartic springs; harmonic: no quartic
+    springs: str = DEFAULT_SPRINGS  # harmonic/quartic or class2: the model's quartic springs;
+                                    # harmonic: no quartic
     tmax: float = 100.0          # give up after this time, R / c
     every: int = 10              # steps between rows of series.dat
     check: int = 100             # steps between checks whether the impact is over

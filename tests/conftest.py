@@ -17,4 +17,5 @@ def small_scene():
 
 @pytest.fixture(scope="session")
 def small_scene_dir(tmp_path_factory, small_scene):
-    return write_scene(small_scene, tmp_path_factory.mktemp("scene"))
+    # class2: the tests that read it name that bond style in their decks
+    return write_scene(small_scene, tmp_path_factory.mktemp("scene"), "class2")

