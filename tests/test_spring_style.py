@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import ROOT, new_lammps
+from tests.helpers import ROOT, new_lammps
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
