@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import csv
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
 
+from .result import MAX_DRIFT, UnreadableResult, read_result
+
 # The columns of impacts.csv, in order; every result.json has them.
 COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
-           "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-           "wall_width", "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
+           "contact_time", "vibration_disk", "vibration_wall", "energy_drift", "drift_exceeded",
+           "side_clearance", "wall_width", "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
            "contact", "stop_rule", "lammps_version", "git_revision")
 MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
                 "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
@@ -46,15 +49,26 @@ def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
 
 
 def collect(folders: list[tuple[str, Path]]) -> list[dict]:
-    """Rows of every finished impact: (study lattice name, run folder) pairs."""
+    """Rows of every finished impact: (study lattice name, run folder) pairs.
+
+    An unreadable result.json is named on stderr and left out (a study that
+    runs again moves it aside and reruns its impact).
+    """
     rows = []
     for lattice, folder in folders:
         result = Path(folder) / "result.json"
         if result.exists():
-            values = json.loads(result.read_text())
+            try:
+                values = read_result(result)
+            except UnreadableResult as error:
+                print(f"warning: {error}; left out of the tables (running the study again "
+                      f"reruns it)", file=sys.stderr)
+                continue
             if "wall_width" not in values:       # results written before the column existed
                 scene = json.loads((Path(folder) / "scene.json").read_text())
                 values["wall_width"] = scene["spec"]["wall_width"]
+            if "drift_exceeded" not in values:   # nor this one
+                values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
             rows.append(row(values, lattice))
     return rows
 
