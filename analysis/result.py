@@ -13,7 +13,7 @@ from .series import read_energies, read_series
 # The energy drift (change of the total energy over the initial kinetic
 # energy) above which a run counts as inaccurate: its time step is too large
 # for the scene. 5 times the largest drift at the default dt = 4e-3 (9.9e-3 in
-# 84 impacts, near head-on; the lever rule's own error is part of it), above
+# 68 impacts, near head-on; the lever rule's own error is part of it), above
 # every rough scene's at steps up to 1.2e-2, whose e and beta stay within 1e-3
 # of the reference; dt = 0.02 gives 0.14 and moves e by 0.05
 # (docs/benchmarks/time_vs_error.md).

@@ -173,8 +173,11 @@ def run_study_command(args) -> int:
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (f", {summary['drift_exceeded']} above --max-drift {study.options.max_drift:g}"
              if summary["drift_exceeded"] else "")
+    shown = Path(summary["page"])
+    if shown.is_relative_to(Path.cwd()):           # as the user would type it
+        shown = shown.relative_to(Path.cwd())
     print(f"{summary['rows']} impacts{drift}, {summary['failed']} failed"
-          f"{f' ({causes})' if causes else ''}; results in {summary['page']}")
+          f"{f' ({causes})' if causes else ''}; results in {shown}")
     return 1 if summary["failed"] else 0
 
 
