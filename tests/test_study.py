@@ -137,20 +137,27 @@ def test_a_bad_name_exits_2_and_writes_nothing(name):
 
 
 def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
-    """On a 4 R wall the grazing impact slides off the end; the other finishes."""
+    """On a 4 R wall the grazing impact slides off the end; the other finishes,
+    and a tiny --max-drift flags it."""
     name = "test_study_failed"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, "--lattices", "random",
-               "--angles", "2", "--samples", "1", "--n-disk", "200", "--wall-width", "4"]
+               "--angles", "2", "--samples", "1", "--n-disk", "200", "--wall-width", "4",
+               "--max-drift", "1e-9"]
     proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 1, proc.stderr
     last = proc.stdout.strip().splitlines()[-1]
-    assert re.match(r"1 impacts, 1 failed \(1: the disk slid off the end of the wall before it "
-                    r"rebounded\); results in ", last), last
+    assert re.match(r"1 impacts, 1 above --max-drift 1e-09, 1 failed \(1: the disk slid off the end "
+                    r"of the wall before it rebounded\); results in runs/test_study_failed/results.md$",
+                    last), last
     page = (ROOT / "runs" / name / "results.md").read_text()
     assert ("| the disk slid off the end of the wall before it rebounded | 1 | random 80.5 deg: seed 1 |"
             in page)
     assert "Made by `python -m runner study demo --name test_study_failed" in page
+    assert "--max-drift 1e-09`" in page
+    assert "1 of the 1 impacts have an energy drift" in page and "random 5.7106 deg: seed 1" in page
+    with (ROOT / "runs" / name / "impacts.csv").open() as handle:
+        assert [row["drift_exceeded"] for row in csv.DictReader(handle)] == ["True"]
     # the report alone says the same and exits the same way
     again = subprocess.run(command + ["--report-only"], cwd=ROOT, capture_output=True, text=True)
     assert again.returncode == 1 and again.stdout.strip().splitlines()[-1] == last
