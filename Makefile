@@ -10,7 +10,8 @@ SHELL := /bin/bash
 # python3 on PATH) the same packages.
 SYSTEM_PYTHON := /usr/bin/python3
 VENV   := $(CURDIR)/.venv
-PYTHON := $(VENV)/bin/python
+# relative: make runs in this folder, and the commands it prints stay short
+PYTHON := .venv/bin/python
 export PATH := $(VENV)/bin:$(PATH)
 # OpenMPI refuses root unless told; CI runs as root.
 export OMPI_ALLOW_RUN_AS_ROOT := 1
@@ -40,13 +41,25 @@ help:
 
 setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so build/libreference_springs.so
 
+# Debian's container images delete every downloaded package whenever anyone
+# runs dpkg or apt-get update (/etc/apt/apt.conf.d/docker-clean, a plain rm, so
+# APT::Keep-Downloaded-Packages does not stop it): an update elsewhere between
+# our download and unpack made dpkg fail with "cannot access archive ... No
+# such file or directory". The packages go to a folder of our own instead,
+# which that rm does not touch; apt's sandbox user cannot write there, so root
+# downloads them (apt checks their signatures all the same). Another install
+# running holds dpkg's lock: wait for it rather than fail.
 $(STAMPS)/debian:
 	@missing=$$(for p in $(APT_PACKAGES); do \
 	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	    echo "installing Debian packages:" $$missing; \
-	    $(SUDO) apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	    archives=$$(mktemp -d) && mkdir -p $$archives/partial && \
+	    { $(SUDO) apt-get update -qq || { sleep 10 && $(SUDO) apt-get update -qq; }; } && \
+	    $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+	        -o Dir::Cache::Archives=$$archives/ -o APT::Sandbox::User=root \
+	        -o DPkg::Lock::Timeout=600 $$missing; \
+	    status=$$?; $(SUDO) rm -rf $$archives; exit $$status; \
 	fi
 	@mkdir -p $(STAMPS) && touch $@
 

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import re
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +12,67 @@ import numpy as np
 from . import figures
 from .fits import bootstrap, fit_compliant, fit_walton, means, reduced_chi2
 from .theory import Compliant, compliant_beta, walton_beta
+from .result import MAX_DRIFT
 from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, near_the_ends, write_csv
+
+
+NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
+
+
+def failure_cause(message: str) -> str:
+    """A failure's message without LAMMPS's prefix, when and where it struck
+    and its numbers: what failures are counted by."""
+    text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", message.strip())
+    text = re.split(r",| at time | at step ", text, maxsplit=1)[0]
+    return NUMBER.sub("#", text).strip()
+
+
+def failure_causes(failed: list[dict]) -> dict[str, int]:
+    """How many failures each cause has, most first."""
+    return dict(Counter(failure_cause(f["error"]) for f in failed).most_common())
+
+
+def where(impacts: list[dict]) -> str:
+    """Lattices and angles of some impacts, with their seeds (or their count)."""
+    by_angle: dict[tuple, list] = {}
+    for impact in impacts:
+        by_angle.setdefault((impact["lattice"], float(impact["gamma"])), []).append(impact["seed"])
+    parts = []
+    for (lattice, gamma), seeds in sorted(by_angle.items()):
+        seeds = sorted(seeds)
+        listed = (f"seed{'s' if len(seeds) > 1 else ''} {', '.join(map(str, seeds))}"
+                  if len(seeds) <= 6 else f"{len(seeds)} seeds")
+        parts.append(f"{lattice} {gamma:g} deg: {listed}")
+    return "; ".join(parts)
+
+
+def failure_section(failed: list[dict]) -> list[str]:
+    """The failed impacts by cause: count, where, and one message in full."""
+    if not failed:
+        return []
+    lines = ["## Failed impacts", "", f"{len(failed)} impact{'' if len(failed) == 1 else 's'} failed, "
+             "by cause (`failed.json` in each impact's folder has its message; `--retry-failed` "
+             "runs them again):", "", "| cause | impacts | where | a message |", "|---|---|---|---|"]
+    for cause, count in failure_causes(failed).items():
+        these = [f for f in failed if failure_cause(f["error"]) == cause]
+        lines.append(f"| {cause} | {count} | {where(these)} | {these[0]['error'][:160].replace('|', '/')} |")
+    return lines + [""]
+
+
+def drift_section(rows: list[dict]) -> list[str]:
+    """Impacts whose energy drift exceeded the threshold: their time step was too large."""
+    flagged = [r for r in rows if str(r["drift_exceeded"]) == "True"]
+    if not flagged:
+        return []
+    worst = max(flagged, key=lambda r: abs(float(r["energy_drift"])))
+    impacts = [{"lattice": r["study_lattice"], "gamma": r["gamma_deg"], "seed": r["seed"]}
+               for r in flagged]
+    return ["## Inaccurate impacts", "",
+            f"{len(flagged)} of the {len(rows)} impacts have an energy drift (change of the total "
+            "energy over the initial kinetic energy) above the study's threshold (`--max-drift`, "
+            f"column `drift_exceeded` of impacts.csv); the largest is {float(worst['energy_drift']):.3g} "
+            f"at dt = {worst['dt']} R/c. Their time step is too large for them, and they are in the "
+            f"tables and fits above. Where: {where(impacts)}.", ""]
 
 
 def fit_all(rows: list[dict], resamples: int = 200, compliant: bool = True) -> dict:
@@ -131,7 +193,9 @@ def wall_options(study: dict) -> str:
 
 def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
                  failed: list[dict], seconds: float, samples_done: int,
-                 fits_clear: dict | None = None) -> str:
+                 fits_clear: dict | None = None, preset: str = "paper") -> str:
+    drifted = sum(str(r["drift_exceeded"]) == "True" for r in rows)
+    drift_note = f"; {drifted} drifted above the energy threshold (below)" if drifted else ""
     samples = (f"{study['samples']} samples each" if samples_done >= study["samples"] else
                f"{samples_done} of the study's {study['samples']} samples complete "
                "(it resumes where it stopped)")
@@ -140,14 +204,15 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
              f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} c; "
              f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
              f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
-             f"failed. LAMMPS time "
+             f"failed{drift_note}. LAMMPS time "
              f"{seconds / 3600:.2f} core-hours. Tables: `impacts.csv` (one row per impact), "
              f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
-             f"Made by `python -m runner study paper --name {study['name']} --lattices "
+             f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
              f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
              f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
              f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
-             f"--dt {study['options']['dt']:g}`.", "",
+             f"--dt {study['options']['dt']:g} "
+             f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}`.", "",
              "## Fitted parameters", "",
              "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | Walton chi2/dof | compliant mu "
              "| compliant chi2/dof |", "|---|---|---|---|---|---|---|---|"]
@@ -177,13 +242,22 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
                         ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
                         ("beta_square", "beta against cot gamma, square lattices (nu = 0.1 and 0.3)")):
         lines += [f"![{title}]({figure_dir}/{name}.png)", "", f"*{title}*", ""]
-    if failed:
-        lines += ["## Failed impacts", "", "| lattice | seed | gamma | error |", "|---|---|---|---|"]
-        lines += [f"| {f['lattice']} | {f['seed']} | {f['gamma']} | {f['error'][:100]} |" for f in failed]
-    return "\n".join(lines) + "\n"
+    lines += drift_section(rows) + failure_section(failed)
+    return "\n".join(lines).rstrip("\n") + "\n"
 
 
-def report(study, resamples: int = 200, page: Path | None = None) -> dict:
+def read_failure(job: dict) -> dict:
+    """A failed impact's failed.json; a damaged one is a failure of its own cause."""
+    path = Path(job["folder"]) / "failed.json"
+    try:
+        failure = json.loads(path.read_text())
+        failure["error"]                               # noqa: B018 -- must have one
+        return failure
+    except (ValueError, TypeError, KeyError) as error:
+        return {**job, "error": f"unreadable failed.json ({type(error).__name__})"}
+
+
+def report(study, resamples: int = 200, page: Path | None = None, preset: str = "paper") -> dict:
     """Write impacts.csv, means.csv, fits.json, figures/ and results.md for a study.
 
     Parameters
@@ -195,6 +269,8 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
     page : pathlib.Path, optional
         Where results.md goes (default: the study's folder); the figures go
         into ``figures/`` beside it.
+    preset : str
+        The preset the study was run from, for the command on the page.
 
     Returns
     -------
@@ -205,8 +281,7 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     rows.sort(key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
-    failed = [json.loads((Path(j["folder"]) / "failed.json").read_text())
-              for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
+    failed = [read_failure(j) for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
     out = study.folder
     write_csv(rows, out / "impacts.csv", COLUMNS)
     means = mean_rows(rows)
@@ -224,5 +299,7 @@ def report(study, resamples: int = 200, page: Path | None = None) -> dict:
     fits_clear = fit_all(clear_of_the_ends(rows, means), resamples, compliant=False)
     figures.draw(means, fits, figure_dir, fits_clear)
     page.write_text(results_page(info, rows, means, fits, figure_dir.relative_to(page.parent).as_posix(),
-                                 failed, seconds, samples_done, fits_clear))
-    return {"rows": len(rows), "failed": len(failed), "fits": fits, "page": str(page)}
+                                 failed, seconds, samples_done, fits_clear, preset))
+    return {"rows": len(rows), "failed": len(failed), "causes": failure_causes(failed),
+            "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
+            "fits": fits, "page": str(page)}

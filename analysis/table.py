@@ -4,15 +4,19 @@ from __future__ import annotations
 
 import csv
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
 
+from .result import MAX_DRIFT, UnreadableResult, read_result
+
 # The columns of impacts.csv, in order; every result.json has them.
 COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
-           "contact_time", "touches", "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-           "wall_width", "n_wall", "wall_ka", "wall_fixed", "n_wall_points", "ka_wall_over_disk",
-           "disk_inertia_ratio", "nu", "steps", "time_end", "wall_seconds", "dt", "integrator",
+           "contact_time", "touches", "vibration_disk", "vibration_wall", "energy_drift",
+           "drift_exceeded", "side_clearance", "wall_width", "n_wall", "wall_ka", "wall_fixed",
+           "n_wall_points", "ka_wall_over_disk", "disk_inertia_ratio", "nu", "steps", "time_end",
+           "wall_seconds", "dt", "integrator",
            "contact", "stop_rule", "lammps_version", "git_revision")
 MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
                 "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
@@ -61,6 +65,9 @@ def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
 def collect(folders: list[tuple[str, Path]]) -> list[dict]:
     """Rows of every finished impact: (study lattice name, run folder) pairs.
 
+    An unreadable result.json is named on stderr and left out (a study that
+    runs again moves it aside and reruns its impact).
+
     Parameters
     ----------
     folders : list of tuple of (str, pathlib.Path)
@@ -70,14 +77,19 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
     Returns
     -------
     list of dict
-        One impacts.csv row (``COLUMNS``) per folder that holds result.json;
-        unfinished or failed impacts are left out.
+        One impacts.csv row (``COLUMNS``) per folder that holds a readable
+        result.json; unfinished or failed impacts are left out.
     """
     rows = []
     for lattice, folder in folders:
         result = Path(folder) / "result.json"
         if result.exists():
-            values = json.loads(result.read_text())
+            try:
+                values = read_result(result)
+            except UnreadableResult as error:
+                print(f"warning: {error}; left out of the tables (running the study again "
+                      f"reruns it)", file=sys.stderr)
+                continue
             if "n_wall" not in values:       # results written before these columns existed
                 scene = json.loads((Path(folder) / "scene.json").read_text())
                 spec = scene["spec"]
@@ -87,6 +99,8 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 values["wall_ka"] = spec.get("wall_ka", "same-c")
                 values["wall_fixed"] = spec["wall_fixed"]
                 values["ka_wall_over_disk"] = scene["ka_wall"] / scene["ka_disk"]
+            if "drift_exceeded" not in values:   # nor this one
+                values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
             rows.append(row(values, lattice))
     return rows
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import sys
 from pathlib import Path
 
@@ -11,6 +12,19 @@ from builder.errors import BuildError, InputError
 
 from .lammps_run import LammpsError
 from .options import CONTACTS, INTEGRATORS, ROUTES, RULES, SPRINGS, RunOptions
+from .stopping import Stopped, stop_on_signals
+
+MAX_DRIFT_HELP = ("flag a run whose energy drift (change of the total energy over the initial "
+                  "kinetic energy) exceeds this: its time step is too large (default: {:g}; "
+                  "at most 1e-2 at the default dt; docs/benchmarks/time_vs_error.md)")
+
+
+def study_name(text: str) -> str:
+    from .study import name_problem
+
+    if problem := name_problem(text):
+        raise argparse.ArgumentTypeError(f"{problem}, got {text!r}")
+    return text
 
 
 def add_run_arguments(parser) -> None:
@@ -39,6 +53,8 @@ def add_run_arguments(parser) -> None:
     group.add_argument("--np", dest="nprocs", type=count(1), default=1, help="MPI ranks")
     group.add_argument("--route", choices=ROUTES, default="lmp",
                        help="lmp program (default) or the lammps Python module")
+    group.add_argument("--max-drift", type=positive_float, default=defaults.max_drift,
+                       help=MAX_DRIFT_HELP.format(defaults.max_drift))
 
 
 def options_from_args(args) -> RunOptions:
@@ -46,7 +62,16 @@ def options_from_args(args) -> RunOptions:
                       contact=args.contact, rule=args.rule, springs=args.springs,
                       tmax=args.tmax, dump_every=args.dump_every, stop_rule=args.stop_rule,
                       nprocs=args.nprocs,
-                      route=args.route)
+                      route=args.route, max_drift=args.max_drift)
+
+
+def warn_if_inaccurate(result: dict) -> None:
+    """One line on stderr if the run's energy drift says its time step is too large."""
+    if result.get("drift_exceeded"):
+        print(f"python -m runner: warning: energy drift {result['energy_drift']:.3g} of the initial "
+              f"kinetic energy exceeds --max-drift {result['max_drift']:g} at dt = {result['dt']:g} "
+              f"R/c: the time step is too large for this scene, e and beta are inaccurate "
+              f"(default dt {RunOptions().dt:g}; docs/benchmarks/time_vs_error.md)", file=sys.stderr)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -73,7 +98,9 @@ def main(argv: list[str] | None = None) -> int:
     study.add_argument("--angles", type=count(2), default=None, help="number of angles")
     study.add_argument("--lattices", nargs="+", default=None,
                        help="among random triangular square_nu0.1 square_nu0.3")
-    study.add_argument("--name", default=None, help="folder under runs/ (default: the preset)")
+    study.add_argument("--name", type=study_name, default=None,
+                       help="folder under runs/ (default: the preset): one folder name, "
+                            "no '/', '..' or whitespace")
     study.add_argument("--workers", type=count(1), default=2, help="worker processes (default: 2)")
     study.add_argument("--partitions", type=count(0), default=0,
                        help="run on this many LAMMPS partitions under mpirun instead of workers")
@@ -88,6 +115,8 @@ def main(argv: list[str] | None = None) -> int:
                        help="contact decay rate a R (default: 300; 300 * sqrt(n_disk / 800) for finer disks)")
     add_wall_arguments(study.add_argument_group("the wall's reading (default: the preset's)"),
                        defaults=False)
+    study.add_argument("--max-drift", type=positive_float, default=None,
+                       help=MAX_DRIFT_HELP.format(RunOptions().max_drift))
     study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
 
     args = parser.parse_args(argv)
@@ -99,10 +128,17 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "run":
             results = [run_scene(args.scene, options_from_args(args))]
         else:
-            return run_study_command(args)
+            with stop_on_signals():
+                return run_study_command(args)
     except (InputError, BuildError, LammpsError) as error:
         print(f"python -m runner: error: {error}", file=sys.stderr)
         return 2 if isinstance(error, InputError) else 1
+    except Stopped as stop:
+        print(f"python -m runner: stopped by {stop}, workers ended; the same command resumes "
+              f"the study", file=sys.stderr)
+        return 128 + stop.signum
+    for result in results:
+        warn_if_inaccurate(result)
     print(format_table(results))
     return 0
 
@@ -124,8 +160,9 @@ def run_study_command(args) -> int:
                if value is not None}
     if args.lattices:
         changes["lattices"] = tuple(args.lattices)
-    if args.dt:
-        changes["options"] = replace(study.options, dt=args.dt)
+    options = {key: value for key, value in (("dt", args.dt), ("max_drift", args.max_drift)) if value}
+    if options:
+        changes["options"] = replace(study.options, **options)
     study = replace(study, **changes)
     study.validate()
     if args.report_only and not (study.folder / "study.json").exists():
@@ -139,9 +176,16 @@ def run_study_command(args) -> int:
     # the paper's study, whatever its sample count, is the one the docs show
     page = Path(__file__).resolve().parents[1] / "docs" / "results.md" \
         if args.preset == "paper" and args.name is None else None
-    summary = report(study, page=page)
-    print(f"{summary['rows']} impacts, {summary['failed']} failed; results in {summary['page']}")
-    return 0
+    summary = report(study, page=page, preset=args.preset)
+    causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
+    drift = (f", {summary['drift_exceeded']} above --max-drift {study.options.max_drift:g}"
+             if summary["drift_exceeded"] else "")
+    shown = Path(summary["page"])
+    if shown.is_relative_to(Path.cwd()):           # as the user would type it
+        shown = shown.relative_to(Path.cwd())
+    print(f"{summary['rows']} impacts{drift}, {summary['failed']} failed"
+          f"{f' ({causes})' if causes else ''}; results in {shown}")
+    return 1 if summary["failed"] else 0
 
 
 if __name__ == "__main__":

@@ -38,6 +38,14 @@ def git_revision() -> str:
         return "unknown"
 
 
+def check_folder(folder: Path | str) -> None:
+    """A run folder's path must be one word to LAMMPS."""
+    folder = Path(folder).resolve()
+    if any(c.isspace() for c in str(folder)):
+        raise InputError(f"scene: the folder's path must not contain spaces (LAMMPS splits "
+                         f"commands at them): {folder}")
+
+
 def run_scene(folder: Path | str, options: RunOptions,
               deck_overrides: dict[str, str] | None = None) -> dict:
     """Run the scene in ``folder`` (scene.data, scene.lmp, scene.json) and analyse it.
@@ -71,9 +79,7 @@ def run_scene(folder: Path | str, options: RunOptions,
     """
     options.validate()
     folder = Path(folder).resolve()
-    if any(c.isspace() for c in str(folder)):
-        raise InputError(f"scene: the folder's path must not contain spaces (LAMMPS splits "
-                         f"commands at them): {folder}")
+    check_folder(folder)
     for name in ("scene.data", "scene.lmp", "scene.json"):
         if not (folder / name).is_file():
             raise InputError(f"scene: no {name} in {folder} (write one with python -m builder scene)")
@@ -124,6 +130,7 @@ def run_impact(spec: SceneSpec, folder: Path | str, options: RunOptions) -> dict
     """
     spec.validate()
     options.validate()
+    check_folder(folder)                # before anything is written
     folder = Path(folder)
     write_scene(build_scene(spec), folder, options.springs)
     return run_scene(folder, options)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
+from analysis.result import MAX_DRIFT
 from builder.errors import InputError, require_choice, require_positive
 from builder.lammps_data import DEFAULT_SPRINGS, SPRING_STYLES
 
@@ -30,6 +31,7 @@ class RunOptions:
     stop_rule: str = "predict"   # predict (rigid-body extrapolation) or clearance (runner/stop_rule.py)
     nprocs: int = 1              # MPI ranks (route lmp)
     route: str = "lmp"           # lmp: the lmp program; python: the lammps module
+    max_drift: float = MAX_DRIFT  # energy drift above which a result is flagged (analysis/result.py)
 
     def validate(self) -> None:
         require_positive("dt", self.dt)
@@ -40,6 +42,7 @@ class RunOptions:
         require_choice("rule", self.rule, RULES)
         require_choice("springs", self.springs, SPRINGS)
         require_positive("tmax", self.tmax)
+        require_positive("max_drift", self.max_drift)
         for name in ("every", "check", "nprocs"):
             value = getattr(self, name)
             if not (isinstance(value, int) and value >= 1):

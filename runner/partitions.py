@@ -6,20 +6,25 @@ they go. After the batch the outputs are analysed like any run's. An error in
 one impact ends the whole MPI job (Debian's LAMMPS cannot catch it): the impact
 that has started but not finished is marked failed, the ones not started stay
 pending, and the next batch goes on.
+
+The MPI job runs in a process group of its own, so that stopping the study
+(SIGINT, SIGTERM: runner.stopping) ends mpirun and every rank with it.
 """
 
 from __future__ import annotations
 
 import multiprocessing as mp
+import os
 import shutil
+import signal
 import subprocess
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
 
 from .impact import git_revision
 from .lammps_run import ROOT, LammpsError, lammps_error, lammps_version, mpi_environment, mpi_launcher
+from .stopping import as_worker
 from .study import Progress, Study, mark_failed, prune, state
 
 SWEEP = ROOT / "decks" / "sweep.lmp"
@@ -34,6 +39,29 @@ def finished(folder: Path) -> bool:
 def build_scenes(study: Study, jobs: list[dict]) -> None:
     for job in jobs:
         study.build(job)
+
+
+def run_group(command: list[str], **kwargs) -> subprocess.CompletedProcess:
+    """subprocess.run in a new process group, which is ended whole if this
+    process is interrupted (subprocess.run would SIGKILL only mpirun, whose
+    ranks would run on)."""
+    with subprocess.Popen(command, start_new_session=True, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True, **kwargs) as process:
+        try:
+            stdout, stderr = process.communicate()
+        except BaseException:
+            os.killpg(process.pid, signal.SIGTERM)       # mpirun passes it on to the ranks
+            try:
+                process.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                pass
+            try:
+                os.killpg(process.pid, signal.SIGKILL)   # whatever is left of the group
+            except ProcessLookupError:
+                pass
+            process.wait()
+            raise
+    return subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
 
 
 def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> int:
@@ -51,8 +79,7 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
                                           "-var", "batch", str(batch), "-var", "count", str(len(jobs))]
     for name, value in variables.items():
         command += ["-var", name, value]
-    launched = subprocess.run(command, cwd=ROOT, capture_output=True, text=True,
-                              env=mpi_environment())
+    launched = run_group(command, cwd=ROOT, env=mpi_environment())
     (ROOT / "tmp.lammps.variable").unlink(missing_ok=True)    # the universe loop's counter
     logs = sorted(batch.glob("log.*"))
     version = lammps_version(logs[0]) if logs else "unknown"
@@ -86,15 +113,16 @@ def run_study_partitions(study: Study, partitions: int, retry_failed: bool = Fal
     jobs = study.prepare(retry_failed)
     progress = Progress(len(jobs), sum(state(j) != "pending" for j in jobs))
     size = batch_size * partitions
-    # The next batch's scenes are built while LAMMPS runs this one.
-    with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("fork")) as builder:
+    # The next batch's scenes are built while LAMMPS runs this one; leaving
+    # the block, however, terminates the builder.
+    with mp.get_context("fork").Pool(1, initializer=as_worker) as builder:
         while todo := [j for j in jobs if state(j) == "pending"]:
             batches = [todo[i:i + size] for i in range(0, len(todo), size)]
-            building = builder.submit(build_scenes, study, batches[0])
+            building = builder.apply_async(build_scenes, (study, batches[0]))
             for k, batch in enumerate(batches):
-                building.result()
+                building.get()
                 if k + 1 < len(batches):
-                    building = builder.submit(build_scenes, study, batches[k + 1])
+                    building = builder.apply_async(build_scenes, (study, batches[k + 1]))
                 run_batch(study, batch, partitions, study.folder / ".batch")
                 progress.failed = sum(state(j) == "failed" for j in jobs)
                 progress(sum(state(j) != "pending" for j in jobs) - progress.already)

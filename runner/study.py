@@ -9,19 +9,21 @@ what is neither, so a killed study loses nothing already done.
 from __future__ import annotations
 
 import json
+import os
 import shutil
+import sys
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from analysis.result import write_json_atomically
+from analysis.result import UnreadableResult, read_result, write_json_atomically
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene
 
-from .impact import run_scene
+from .impact import check_folder, run_scene
 from .lammps_run import lammps_error
 from .options import RunOptions
 
@@ -35,6 +37,25 @@ LATTICES = {
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
+# An unreadable result.json is moved aside to this name, kept for a look, and
+# its impact runs again.
+CORRUPT = "result.json.corrupt"
+
+
+def name_problem(name: str) -> str | None:
+    """Why ``name`` cannot be a study's folder under runs/, or None.
+
+    One folder, right under runs/: no path separator or '..', which would put
+    it elsewhere, nor empty or '.', which would be runs/ itself; no whitespace,
+    at which LAMMPS splits its commands (every impact would fail).
+    """
+    if name in ("", "."):
+        return "must be a non-empty folder name"
+    if os.sep in name or (os.altsep and os.altsep in name) or ".." in name:
+        return "must be one folder under runs/, without '/' or '..'"
+    if any(c.isspace() for c in name):
+        return "must not contain whitespace (LAMMPS splits its commands at it)"
+    return None
 
 
 def study_angles(count: int) -> list[float]:
@@ -76,6 +97,9 @@ class Study:
 
     def validate(self) -> None:
         from builder.errors import InputError
+        if problem := name_problem(self.name):
+            raise InputError(f"name {problem}, got {self.name!r}")
+        check_folder(self.folder)          # the clone's own path, for LAMMPS
         for lattice in self.lattices:
             if lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
@@ -110,13 +134,18 @@ class Study:
         if retry_failed:
             for job in jobs:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
+        for job in jobs:
+            set_aside_if_unreadable(job)
         return jobs
 
     def build(self, job: dict) -> Path:
         """The job's scene, written afresh into its folder (an impact killed
-        half-way starts over)."""
+        half-way starts over); a result moved aside stays."""
         folder = Path(job["folder"])
-        shutil.rmtree(folder, ignore_errors=True)
+        if folder.is_dir():
+            for path in folder.iterdir():
+                if path.name != CORRUPT:
+                    shutil.rmtree(path) if path.is_dir() else path.unlink()
         return write_scene(build_scene(self.spec(job)), folder, self.options.springs)
 
     def summary(self, jobs: list[dict]) -> dict:
@@ -140,10 +169,24 @@ def state(job: dict) -> str:
     return "pending"
 
 
+def set_aside_if_unreadable(job: dict) -> None:
+    """Move an unreadable result.json to result.json.corrupt, so that its
+    impact counts as not run (a half-written file cannot come from this
+    program, which writes atomically, but from a full disk or a copy)."""
+    result = Path(job["folder"]) / "result.json"
+    if result.exists():
+        try:
+            read_result(result)
+        except UnreadableResult as error:
+            result.replace(result.with_name(CORRUPT))
+            print(f"warning: {error}; moved aside to {CORRUPT}, its impact runs again",
+                  file=sys.stderr, flush=True)
+
+
 def prune(folder: Path) -> None:
     """Keep only the small files of a finished impact."""
     for path in folder.iterdir():
-        if path.name not in KEEP:
+        if path.name not in KEEP and path.name != CORRUPT:
             path.unlink()
 
 

@@ -196,3 +196,31 @@ def test_one_and_two_ranks_agree(tmp_path, gamma, bound):
     assert results[0]["steps"] == results[1]["steps"]
     for key in ("e", "beta", "omega"):
         assert abs(results[0][key] - results[1][key]) < bound
+
+
+def test_a_too_large_time_step_is_flagged_and_warned_of(tmp_path):
+    """5 times the default step on the default disk: energy drift 0.14 of the
+    initial kinetic energy (2e-4 at the default), e off by 0.05."""
+    out = tmp_path / "coarse"
+    proc = runner_cli("impact", "--gamma", "60", "--seed", "3", "--dt", "0.02", "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    warning = proc.stderr.strip().splitlines()
+    assert len(warning) == 1 and "warning: energy drift" in warning[0]
+    assert "dt = 0.02" in warning[0] and "--max-drift 0.05" in warning[0]
+    result = json.loads((out / "result.json").read_text())
+    assert result["drift_exceeded"] is True and result["energy_drift"] > result["max_drift"] == 0.05
+    # the same scene at the default step: no warning, no flag
+    proc = runner_cli("run", str(out))
+    assert proc.returncode == 0 and proc.stderr == ""
+    result = json.loads((out / "result.json").read_text())
+    assert result["drift_exceeded"] is False and abs(result["energy_drift"]) < 1e-3
+    # a threshold above the drift silences it
+    proc = runner_cli("run", str(out), "--dt", "0.02", "--max-drift", "0.5")
+    assert proc.returncode == 0 and proc.stderr == ""
+
+
+def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
+    out = tmp_path / "my run"
+    proc = runner_cli("impact", "--n-disk", "200", "--out", str(out))
+    assert proc.returncode == 2 and "must not contain spaces" in proc.stderr
+    assert not out.exists()

@@ -25,3 +25,47 @@ def test_near_side_counts_and_clear_angles():
     kept = clear_of_the_ends(rows, means)
     assert sorted({r["gamma_deg"] for r in kept}) == [30.0, 70.0]
     assert len(kept) == 20
+
+
+def test_failures_are_grouped_by_cause_with_their_angles_and_seeds():
+    from analysis.report import failure_causes, failure_section
+
+    slid = ("ERROR: the disk slid off the end of the wall before it rebounded, at time {}: the "
+            "contact is longer than the wall (wall_width) allows at this angle")
+    failed = [{"lattice": "random", "seed": s, "gamma": 80.5, "error": slid.format(10 + s)}
+              for s in range(1, 41)]
+    failed += [{"lattice": "random", "seed": 7, "gamma": 76.2, "error": slid.format(3.25)},
+               {"lattice": "square_nu0.1", "seed": 3, "gamma": 5.7106, "error": "ERROR on proc 0: "
+                "Pair polyline/exp: segment 56-57 is 0.2493 long, more than reach 0.22"},
+               {"lattice": "square_nu0.1", "seed": 9, "gamma": 5.7106, "error": "ERROR on proc 0: "
+                "Pair polyline/exp: segment 12-13 is 0.31 long, more than reach 0.22"}]
+    assert failure_causes(failed) == {
+        "the disk slid off the end of the wall before it rebounded": 41,
+        "Pair polyline/exp: segment #-# is # long": 2}
+    rows = [line for line in failure_section(failed) if line.startswith("| ") and "---" not in line][1:]
+    assert len(rows) == 2                                    # one row per cause, not per impact
+    assert rows[0].startswith("| the disk slid off the end of the wall before it rebounded | 41 "
+                              "| random 76.2 deg: seed 7; random 80.5 deg: 40 seeds |")
+    assert "| 2 | square_nu0.1 5.7106 deg: seeds 3, 9 |" in rows[1]
+    assert failure_section([]) == []
+
+
+def test_an_unreadable_result_is_named_and_left_out(tmp_path, capsys):
+    import json
+
+    from analysis.table import collect
+
+    good = dict(fake_rows({30.0: [3.0]})[0], lattice="random", nu=0.3, steps=100, wall_seconds=1.0,
+                energy_drift=0.1, wall_width=8.0)     # an old result: no drift flag yet
+    folders = []
+    for name, text in (("good", json.dumps(good)), ("truncated", '{"e": 0.3, "bet'), ("empty", "{}"),
+                       ("list", "[1]")):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "result.json").write_text(text)
+        folders.append(("random", tmp_path / name))
+    rows = collect(folders)
+    assert len(rows) == 1 and rows[0]["drift_exceeded"] is True
+    warnings = capsys.readouterr().err.strip().splitlines()
+    assert len(warnings) == 3
+    for name, line in zip(("truncated", "empty", "list"), warnings):
+        assert line.startswith(f"warning: {tmp_path / name / 'result.json'}:")

@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import csv
 import os
+import re
+import shutil
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -114,3 +117,146 @@ def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group)
     assert {len(g) for g in groups} == {per_group}
     for group in groups:
         assert len({jobs[i]["seed"] for i in group}) == 1
+
+
+def runs_listing() -> set[str]:
+    """Everything under runs/ and beside it that a study could have written."""
+    return {str(p.relative_to(ROOT)) for p in (ROOT / "runs").glob("*")} | \
+           {p.name for p in ROOT.glob("escape*")}
+
+
+@pytest.mark.parametrize("name", ["my study", "", "../escape", ".", "a/b"])
+def test_a_bad_name_exits_2_and_writes_nothing(name):
+    (ROOT / "runs").mkdir(exist_ok=True)
+    before = runs_listing()
+    proc = study(name)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert "argument --name" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert proc.stdout == ""
+    assert runs_listing() == before
+
+
+def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
+    """On a 4 R wall the grazing impact slides off the end; the other finishes,
+    and a tiny --max-drift flags it."""
+    name = "test_study_failed"
+    subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, "--lattices", "random",
+               "--angles", "2", "--samples", "1", "--n-disk", "200", "--wall-width", "4",
+               "--max-drift", "1e-9"]
+    proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 1, proc.stderr
+    last = proc.stdout.strip().splitlines()[-1]
+    assert re.match(r"1 impacts, 1 above --max-drift 1e-09, 1 failed \(1: the disk slid off the end "
+                    r"of the wall before it rebounded\); results in runs/test_study_failed/results.md$",
+                    last), last
+    page = (ROOT / "runs" / name / "results.md").read_text()
+    assert ("| the disk slid off the end of the wall before it rebounded | 1 | random 80.5 deg: seed 1 |"
+            in page)
+    assert "Made by `python -m runner study demo --name test_study_failed" in page
+    assert "--max-drift 1e-09`" in page
+    assert "1 of the 1 impacts have an energy drift" in page and "random 5.7106 deg: seed 1" in page
+    with (ROOT / "runs" / name / "impacts.csv").open() as handle:
+        assert [row["drift_exceeded"] for row in csv.DictReader(handle)] == ["True"]
+    # the report alone says the same and exits the same way
+    again = subprocess.run(command + ["--report-only"], cwd=ROOT, capture_output=True, text=True)
+    assert again.returncode == 1 and again.stdout.strip().splitlines()[-1] == last
+
+
+def descendants(pid: int) -> set[int]:
+    """Every process below ``pid``, from pgrep -P, recursively."""
+    found: set[int] = set()
+    todo = [pid]
+    while todo:
+        out = subprocess.run(["pgrep", "-P", str(todo.pop())], capture_output=True, text=True).stdout
+        children = {int(p) for p in out.split()}
+        todo += children - found
+        found |= children
+    return found
+
+
+def comm(pid: int) -> str:
+    """The process's command name, or '' if it is gone."""
+    try:
+        return Path(f"/proc/{pid}/comm").read_text().strip()
+    except FileNotFoundError:
+        return ""
+
+
+def alive(pid: int) -> bool:
+    """Running, not a zombie waiting for whoever inherited it."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except FileNotFoundError:
+        return False
+    return stat.rsplit(")", 1)[1].split()[0] != "Z"
+
+
+@pytest.mark.parametrize("signum, extra, worker", [
+    (signal.SIGTERM, (), "python"),
+    (signal.SIGINT, (), "python"),
+    (signal.SIGTERM, ("--partitions", "2", "--batch-size", "3"), "lmp"),
+])
+def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, worker):
+    name = "test_study_signal"
+    folder = ROOT / "runs" / name
+    subprocess.run(["rm", "-rf", str(folder)])
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY, *extra]
+    # its own session, so that a failing test can still clean up the whole group
+    proc = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        below: set[int] = set()
+        while time.monotonic() < deadline:       # until the impacts are running
+            below = descendants(proc.pid)
+            names = [comm(p) for p in below if alive(p)]
+            if sum(n.startswith(worker) for n in names) >= 2:    # two workers or ranks
+                break
+            time.sleep(0.2)
+        time.sleep(1.0)                          # inside LAMMPS by now
+        below = descendants(proc.pid) | below
+        assert below, "the study started no process"
+        os.kill(proc.pid, signum)                # the study's process only, as kill does
+        out, err = proc.communicate(timeout=30)
+        assert proc.returncode == 128 + signum, err
+        assert "Traceback" not in err
+        assert err.strip().splitlines() == [err.strip().splitlines()[-1]]
+        assert f"stopped by {signal.Signals(signum).name}" in err
+        time.sleep(5)
+        assert not [p for p in below if alive(p)]
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
+        for pid in descendants(proc.pid):
+            os.kill(pid, signal.SIGKILL)
+
+
+def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
+    name = "test_study_corrupt"
+    folder = ROOT / "runs" / name
+    subprocess.run(["rm", "-rf", str(folder)])
+    shutil.copytree(ROOT / "runs" / "test_study_whole", folder)
+    results = sorted(folder.glob("random/*/*/result.json"))
+    truncated, empty = results[1], results[4]
+    truncated.write_text('{"e": 0.3, "bet')
+    empty.write_text("{}")
+
+    report = study(name, "--report-only")
+    assert report.returncode == 0, report.stderr
+    warnings = report.stderr.strip().splitlines()
+    assert len(warnings) == 2 and all(line.startswith("warning: ") for line in warnings)
+    assert str(truncated) in report.stderr and str(empty) in report.stderr
+    assert len(table(name)) == 4                          # the two left out
+    assert truncated.read_text() == '{"e": 0.3, "bet'    # and left alone
+
+    rerun = study(name)
+    assert rerun.returncode == 0, rerun.stderr
+    assert str(truncated) in rerun.stderr and str(empty) in rerun.stderr
+    assert "4 already done" in rerun.stdout
+    assert (truncated.parent / "result.json.corrupt").read_text() == '{"e": 0.3, "bet'
+    assert (empty.parent / "result.json.corrupt").read_text() == "{}"
+    assert table(name) == uninterrupted
