@@ -90,8 +90,9 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 print(f"warning: {error}; left out of the tables (running the study again "
                       f"reruns it)", file=sys.stderr)
                 continue
-            if "n_wall" not in values:       # results written before these columns existed
-                scene = json.loads((Path(folder) / "scene.json").read_text())
+            scene_file = Path(folder) / "scene.json"
+            if "n_wall" not in values and scene_file.exists():   # results from before the readings
+                scene = json.loads(scene_file.read_text())
                 spec = scene["spec"]
                 values.setdefault("wall_width", spec["wall_width"])
                 # the scenes before the readings: the disk's density, springs for its c
