@@ -9,7 +9,7 @@ lattice itself.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.stats import qmc
@@ -52,6 +52,9 @@ class Body:
     surface: np.ndarray     # indices of the contact surface row, in order
     spacing: float          # nominal distance between neighbouring points
     held: np.ndarray | None = None  # (n,) True for points held fixed; None: none are
+    # Outline segments that were not Delaunay edges and were flipped in
+    # (``network.constrain``); empty for almost every body.
+    steep: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), int))
 
 
 def triangular_spacing(density: float) -> float:
@@ -124,7 +127,7 @@ def assemble(points, role, surface, outline, spacing, lattice="random", n_regula
 
     ``n_regular`` is the number of trailing points that form a regular lattice.
     """
-    springs = triangulate_body(points, outline, MAX_SPRING * spacing)
+    springs, steep = triangulate_body(points, outline, MAX_SPRING * spacing)
     stiffness = np.ones(len(springs))
     if lattice == "square":
         regular = np.arange(len(points) - n_regular, len(points))
@@ -147,7 +150,7 @@ def assemble(points, role, surface, outline, spacing, lattice="random", n_regula
         stiffness = np.concatenate([np.ones(len(band_pairs)), grid_k, extra_k])
         order = np.lexsort((springs[:, 1], springs[:, 0]))
         springs, stiffness = springs[order], stiffness[order]
-    return Body(points, role, springs, stiffness, surface, spacing)
+    return Body(points, role, springs, stiffness, surface, spacing, steep=steep)
 
 
 def make_disk(rng: np.random.Generator, lattice: str = "random", n_points: int = 800,
