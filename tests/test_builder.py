@@ -175,14 +175,14 @@ def test_builder_cli_rejects_bad_input(tmp_path, args, words):
 # Seeds whose bodies have a surface segment that is not a Delaunay edge (a
 # steep step between neighbouring surface points); the builder refused them
 # until the segments were flipped in (network.constrain). The walls are at
-# the disk's number density (n_wall=None), where the study lost them.
+# the disk's number density (n_wall="density"), where the study lost them.
 STEEP = [("wall", 45, "random"), ("wall", 78, "random"), ("disk", 97, "random"),
          *[("disk", seed, name) for seed in (64, 77, 85) for name in ("square_nu0.1", "square_nu0.3")]]
 
 
 def steep_body(kind: str, seed: int, name: str) -> bodies.Body:
     # A disk does not depend on the wall: a small wall saves building a dense one.
-    disk, wall = build_bodies(SceneSpec(seed=seed, n_wall=None if kind == "wall" else 800,
+    disk, wall = build_bodies(SceneSpec(seed=seed, n_wall="density" if kind == "wall" else 800,
                                         **LATTICES[name]))
     return disk if kind == "disk" else wall
 
@@ -207,14 +207,14 @@ def test_steep_seeds_build_with_their_surface_as_springs(kind, seed, name):
 
 
 def test_scene_of_a_steep_wall_builds():
-    scene = build_scene(SceneSpec(seed=45, n_wall=None, gamma_deg=45.0))
+    scene = build_scene(SceneSpec(seed=45, n_wall="density", gamma_deg=45.0))
     n_row = scene.info["wall_row_tags"][1]
     polyline = {(i, i + 1) for i in range(n_row - 1)}
     assert polyline <= {tuple(e) for e in scene.springs.tolist()}   # the contact surface is bonded
 
 
 DIGEST_SCRIPT = """
-import sys; sys.path.insert(0, ".")
+import sys
 import numpy as np
 from builder import bodies
 from builder.scene import _sample_seeds
@@ -253,7 +253,7 @@ def test_seeds_that_built_keep_their_bytes(seed):
         assert len(disk.steep) == 0
         for array in (disk.points, disk.role, disk.springs, disk.stiffness):
             h.update(np.ascontiguousarray(array).tobytes())
-    for n_wall in (800, None):
+    for n_wall in (800, "density"):
         _, wall = build_bodies(SceneSpec(seed=seed, n_wall=n_wall, wall_fixed="sides"))
         assert len(wall.steep) == 0
         for array in (wall.points, wall.role, wall.springs, wall.stiffness, wall.held):
