@@ -1,0 +1,87 @@
+"""Why a run stops with "a disk point is inside the wall": the geometry just before.
+
+    python bench/inside_wall.py --n-wall 800 --wall-ka same-c --seed 1 --gamma 61.6996
+
+Reruns one impact with a dump every 20 steps and, for the last frames before
+the stop, reports what could have put a disk point inside the wall:
+
+- wall surface points inside the disk's outline (the polygon of its surface
+  points): only the disk's points feel the contact, so nothing stops a wall
+  point from passing between two of them;
+- folds of the wall's surface (a segment running backwards in x), where the
+  vertical-ray test of the contact style could misread a point in a dip;
+- how far the wall sags under the disk and how near the disk is to a held side.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+from pathlib import Path
+
+import numpy as np
+from matplotlib.path import Path as Polygon
+
+from builder.cli import wall_points, wall_spring
+from builder.lammps_data import write_scene
+from builder.scene import DISK_INTERIOR, DISK_SURFACE, WALL_FIXED, SceneSpec, build_scene
+from runner.impact import run_scene
+from runner.lammps_run import LammpsError
+from runner.study import PRESETS
+
+from analysis.dump import open_run
+
+
+def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int) -> dict:
+    """What a frame shows about the disk and the wall's surface (atoms in tag
+    order; MDAnalysis shifts positions by the box's corner, so heights and
+    sides are taken from the wall's held points, which do not move)."""
+    row = x[first - 1:last]
+    disk = (types == DISK_SURFACE) | (types == DISK_INTERIOR)
+    surface = np.flatnonzero(types == DISK_SURFACE)
+    centre = x[disk].mean(axis=0)
+    order = np.argsort(np.arctan2(*(x[surface] - centre).T[::-1]))
+    inside = np.flatnonzero(Polygon(x[surface][order]).contains_points(row)) + first
+    folds = np.flatnonzero(np.diff(row[:, 0]) <= 0.0) + first
+    held = x[types == WALL_FIXED]
+    return {"step": step, "wall points inside the disk": inside.tolist(),
+            "folds (segment starts)": folds.tolist(),
+            "deepest sag of the wall's surface, R": round(float(held[:, 1].max() - row[:, 1].min()), 3),
+            "disk centre to the nearer held side, R":
+                round(float(min(centre[0] - held[:, 0].min(), held[:, 0].max() - centre[0])), 3)}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n-wall", type=wall_points, default=SceneSpec.n_wall)
+    parser.add_argument("--wall-ka", type=wall_spring, default=SceneSpec.wall_ka)
+    parser.add_argument("--wall-fixed", default=SceneSpec.wall_fixed)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--gamma", type=float, default=61.6996)
+    parser.add_argument("--frames", type=int, default=4, help="frames before the stop to report")
+    args = parser.parse_args()
+
+    spec = SceneSpec(seed=args.seed, gamma_deg=args.gamma, n_wall=args.n_wall,
+                     wall_ka=args.wall_ka, wall_fixed=args.wall_fixed)
+    scene = build_scene(spec)
+    options = PRESETS["paper"].options
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = write_scene(scene, Path(tmp) / "scene", options.springs)
+        run = dict(vars(options), dump_every=20, route="lmp")
+        try:
+            run_scene(folder, type(options)(**run))
+            print("the impact finished: nothing to diagnose")
+            return
+        except LammpsError as error:
+            print(f"stopped: {error}")
+        universe = open_run(folder)
+        order = np.argsort(universe.atoms.ids)
+        types = universe.atoms.types.astype(int)[order]
+        first, last = scene.info["wall_row_tags"]
+        for ts in universe.trajectory[-args.frames:]:
+            x = universe.atoms.positions[order, :2].astype(float)
+            print(diagnose(ts.data.get("step", ts.frame), x, types, first, last))
+
+
+if __name__ == "__main__":
+    main()
