@@ -56,7 +56,8 @@ E_PAPER, E_NEAR = 0.8, 0.1
 BETA0_PAPER, BETA0_NEAR = 0.56, 0.2
 ENDS_NEAR = 0.1
 BANDS = ((">= 2", 2.0, np.inf), ("0.5-2", 0.5, 2.0), ("< 0.5", 0.0, 0.5))
-KEEP_COLUMNS = ("reading", "study_lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta",
+KEEP_COLUMNS = ("reading", "study_lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta", "omega",
+                "vibration_disk", "vibration_wall",
                 "contact_time", "touches", "side_clearance", "energy_drift", "steps",
                 "wall_seconds", "n_wall_points", "disk_inertia_ratio", "nu", "error")
 
@@ -305,10 +306,15 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
     parser.add_argument("--from-csv", action="store_true",
                         help=f"only rebuild the page and figure from {ROWS_CSV.name}")
+    parser.add_argument("--docs", type=Path, default=ROWS_CSV.parent,
+                        help="where the page and the figure go (default: docs/benchmarks)")
     args = parser.parse_args()
 
     if args.from_csv:
         rows = read_rows_csv(ROWS_CSV)
+        # the run's size, from its rows
+        args.angles = len({r["gamma_deg"] for r in rows})
+        args.samples = max(int(r["seed"]) for r in rows)
     else:
         rows = []
         for reading in readings():
@@ -321,11 +327,13 @@ def main() -> None:
             run_study(study, args.workers)
             rows += run_rows(study, reading)
         write_csv(rows, ROWS_CSV, KEEP_COLUMNS)
-    draw(rows, FIGURE)
+    args.docs.mkdir(parents=True, exist_ok=True)
+    draw(rows, args.docs / FIGURE.name)
     body = page(rows, args)
     print(body)
     command = f"python bench/scene_readings.py --samples {args.samples} --angles {args.angles}"
-    print(f"wrote {write_report('scene_readings', 'The readings of the scene', command, body)}")
+    path = write_report("scene_readings", "The readings of the scene", command, body, args.docs)
+    print(f"wrote {path}")
 
 
 if __name__ == "__main__":

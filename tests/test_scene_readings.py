@@ -126,3 +126,16 @@ def test_a_study_records_its_reading_in_every_row():
         assert abs(int(row["n_wall_points"]) - 600) < 30
     page = (ROOT / "runs" / name / "results.md").read_text()
     assert "--n-wall 600 --wall-ka 2 --wall-fixed sides+bottom" in page
+
+
+def test_the_committed_readings_table_comes_from_its_rows(tmp_path):
+    """The page of docs/benchmarks/scene_readings.md, rebuilt from the committed
+    rows (the machine and date line aside), is the committed page."""
+    subprocess.run([sys.executable, "bench/scene_readings.py", "--from-csv", "--docs", str(tmp_path)],
+                   cwd=ROOT, check=True, capture_output=True, timeout=600)
+    committed = (ROOT / "docs" / "benchmarks" / "scene_readings.md").read_text().splitlines()
+    rebuilt = (tmp_path / "scene_readings.md").read_text().splitlines()
+    assert committed[0] == rebuilt[0] and committed[3:] == rebuilt[3:]
+    assert committed[2].split(" on ")[0] == rebuilt[2].split(" on ")[0]     # the same command
+    assert "1. `1600_10ka_sides`" in "\n".join(rebuilt)                      # the default's reading
+    assert (tmp_path / "scene_readings.png").stat().st_size > 10_000
