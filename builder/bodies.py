@@ -52,8 +52,10 @@ class Body:
     surface: np.ndarray     # indices of the contact surface row, in order
     spacing: float          # nominal distance between neighbouring points
     held: np.ndarray | None = None  # (n,) True for points held fixed; None: none are
-    # Outline segments that were not Delaunay edges and were flipped in
-    # (``network.constrain``); empty for almost every body.
+    # Outline segments that the pruned Delaunay triangulation left out (the
+    # builder used to refuse such a body); a body with any was triangulated
+    # exactly, as the constrained Delaunay triangulation of its outline
+    # (``network.triangulate_body``). Empty for almost every body.
     steep: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), int))
 
 
