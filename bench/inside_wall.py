@@ -2,7 +2,7 @@
 
     python bench/inside_wall.py --n-wall 800 --wall-ka same-c --seed 1 --gamma 61.6996
 
-Reruns one impact with a dump every 20 steps and, for the last frames before
+Reruns one impact with a dump every 10 steps and, for the last frames before
 the stop, reports what could have put a disk point inside the wall:
 
 - wall surface points inside the disk's outline (the polygon of its surface
@@ -67,7 +67,7 @@ def main() -> None:
     options = PRESETS["paper"].options
     with tempfile.TemporaryDirectory() as tmp:
         folder = write_scene(scene, Path(tmp) / "scene", options.springs)
-        run = dict(vars(options), dump_every=20, route="lmp")
+        run = dict(vars(options), dump_every=10, route="lmp")
         try:
             run_scene(folder, type(options)(**run))
             print("the impact finished: nothing to diagnose")

@@ -82,8 +82,11 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
         "(c) impact deck, as the study": (IMPACT_DECK, common),
-        "(d) series every 100, not 25": (IMPACT_DECK, {**common, "every": "100"}),
-        "(d) checks every 500, not 100": (IMPACT_DECK, {**common, "check": "500"}),
+        f"(d) series every {5 * options.every}, not {options.every}":
+            (IMPACT_DECK, {**common, "every": str(5 * options.every),
+                           "check": str(max(options.check, 5 * options.every))}),
+        f"(d) checks every {options.check // 2}, not {options.check}":
+            (IMPACT_DECK, {**common, "check": str(options.check // 2)}),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
     }

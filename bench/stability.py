@@ -80,7 +80,7 @@ def spring_strain(folder: Path) -> float:
 def long_run(tmp: Path, dt: float) -> list[str]:
     folder = write_scene(build_scene(SceneSpec(gamma_deg=80.5)), tmp / "long")
     # early_stop no: the deck runs on to tmax after the disk has left
-    run_scene(folder, RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=100),
+    run_scene(folder, RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=50),
               {"early_stop": "no"})
     energies = read_energies(folder / "energy.dat")
     total = [sum(row[k] for k in ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact"))

@@ -65,6 +65,17 @@ def options_from_args(args) -> RunOptions:
                       route=args.route, max_drift=args.max_drift)
 
 
+def unstable_hint(error: Exception, args) -> str:
+    """For a run that blew up: its time step against the default's."""
+    if not (isinstance(error, LammpsError) and "unstable" in str(error)
+            and getattr(args, "dt", None) is not None):
+        return ""
+    default = RunOptions().dt
+    return (f" (dt = {args.dt:g} R/c; the default, {default:g}, is the largest step found "
+            f"accurate, docs/benchmarks/time_vs_error.md)" if args.dt > default else
+            f" (dt = {args.dt:g} R/c)")
+
+
 def warn_if_inaccurate(result: dict) -> None:
     """One line on stderr if the run's energy drift says its time step is too large."""
     if result.get("drift_exceeded"):
@@ -131,7 +142,7 @@ def main(argv: list[str] | None = None) -> int:
             with stop_on_signals():
                 return run_study_command(args)
     except (InputError, BuildError, LammpsError) as error:
-        print(f"python -m runner: error: {error}", file=sys.stderr)
+        print(f"python -m runner: error: {error}{unstable_hint(error, args)}", file=sys.stderr)
         return 2 if isinstance(error, InputError) else 1
     except Stopped as stop:
         print(f"python -m runner: stopped by {stop}, workers ended; the same command resumes "

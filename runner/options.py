@@ -13,11 +13,12 @@ CONTACTS = ("segment", "pair")
 RULES = ("lever", "gradient")
 SPRINGS = SPRING_STYLES
 ROUTES = ("lmp", "python")
+MAX_CHUNK_TIME = 2.0           # R/c; the shortest contacts last about 9
 
 
 @dataclass
 class RunOptions:
-    dt: float = 0.004            # time step, R / c (docs/benchmarks/time_vs_error.md)
+    dt: float = 0.012            # time step, R / c (docs/benchmarks/time_vs_error.md)
     integrator: str = "verlet"
     nrespa: int = 2              # respa: spring steps per step
     contact: str = "segment"     # segment: the paper's contact; pair: the design card
@@ -26,7 +27,7 @@ class RunOptions:
                                     # harmonic: no quartic
     tmax: float = 100.0          # give up after this time, R / c
     every: int = 10              # steps between rows of series.dat
-    check: int = 100             # steps between checks whether the impact is over
+    check: int = 100             # steps between checks whether the impact is over (1.2 R/c)
     dump_every: int = 0          # steps between dump frames; 0: no dump
     stop_rule: str = "predict"   # predict (rigid-body extrapolation) or clearance (runner/stop_rule.py)
     nprocs: int = 1              # MPI ranks (route lmp)
@@ -47,6 +48,13 @@ class RunOptions:
             value = getattr(self, name)
             if not (isinstance(value, int) and value >= 1):
                 raise InputError(f"{name} must be an integer >= 1, got {value}")
+        # the deck learns that the disk has touched from the contact energy at the
+        # ends of its chunks: a chunk longer than a contact (9 R/c and more) could
+        # hold it whole, and the run would never stop
+        if self.check * self.dt > MAX_CHUNK_TIME:
+            raise InputError(f"check * dt must be at most {MAX_CHUNK_TIME:g} R/c (a chunk shorter "
+                             f"than any contact), got {self.check} * {self.dt:g} = "
+                             f"{self.check * self.dt:g}")
         if self.check % self.every:
             raise InputError(f"check must be a multiple of every ({self.every}), got {self.check}")
         if not (isinstance(self.dump_every, int) and self.dump_every >= 0):

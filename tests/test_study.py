@@ -137,13 +137,13 @@ def test_a_bad_name_exits_2_and_writes_nothing(name):
 
 
 def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
-    """On a 4 R wall the grazing impact slides off the end; the other finishes,
-    and a tiny --max-drift flags it."""
+    """On a 4 R wall (the first study's dense wall) the grazing impact slides
+    off the end; the other finishes, and a tiny --max-drift flags it."""
     name = "test_study_failed"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, "--lattices", "random",
                "--angles", "2", "--samples", "1", "--n-disk", "200", "--wall-width", "4",
-               "--max-drift", "1e-9"]
+               "--n-wall", "density", "--wall-ka", "same-c", "--max-drift", "1e-9"]
     proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 1, proc.stderr
     last = proc.stdout.strip().splitlines()[-1]
