@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import json
 import re
 from collections import Counter
@@ -191,6 +192,15 @@ def wall_options(study: dict) -> str:
             f"--wall-fixed {study.get('wall_fixed', 'sides')}")
 
 
+def wall_clock(study: dict) -> str:
+    """How long the whole study took, where study.json records it."""
+    clock = study.get("wall_clock")
+    if not clock:
+        return ""
+    return (f"; the whole study took {clock['seconds'] / 60:.1f} min of wall-clock time with "
+            f"{clock['workers']} workers on {clock['cores']} cores ({clock['cpu']})")
+
+
 def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, figure_dir: str,
                  failed: list[dict], seconds: float, samples_done: int,
                  fits_clear: dict | None = None, preset: str = "paper") -> str:
@@ -205,7 +215,7 @@ def results_page(study: dict, rows: list[dict], means: list[dict], fits: dict, f
              f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
              f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
              f"failed{drift_note}. LAMMPS time "
-             f"{seconds / 3600:.2f} core-hours. Tables: `impacts.csv` (one row per impact), "
+             f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. Tables: `impacts.csv` (one row per impact), "
              f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
              f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
              f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
@@ -257,8 +267,12 @@ def read_failure(job: dict) -> dict:
         return {**job, "error": f"unreadable failed.json ({type(error).__name__})"}
 
 
-def report(study, resamples: int = 200, page: Path | None = None, preset: str = "paper") -> dict:
-    """Write impacts.csv, means.csv, fits.json, figures/ and results.md for a study.
+FAILED_COLUMNS = ("lattice", "seed", "gamma", "error")
+
+
+def report(study, resamples: int = 200, page: Path | None = None, preset: str = "paper",
+           tables: Path | None = None) -> dict:
+    """Write impacts.csv, means.csv, fits.json, failed.csv, figures/ and results.md for a study.
 
     Parameters
     ----------
@@ -271,6 +285,9 @@ def report(study, resamples: int = 200, page: Path | None = None, preset: str = 
         into ``figures/`` beside it.
     preset : str
         The preset the study was run from, for the command on the page.
+    tables : pathlib.Path, optional
+        A folder that gets a copy of the tables and study.json, from which
+        ``report_from_tables`` remakes the page (docs/results/ for the paper).
 
     Returns
     -------
@@ -280,22 +297,61 @@ def report(study, resamples: int = 200, page: Path | None = None, preset: str = 
     """
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
-    rows.sort(key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
     failed = [read_failure(j) for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
-    out = study.folder
+    info = json.loads((study.folder / "study.json").read_text())
+    summary = render(info, rows, failed, study.folder, page or study.folder / "results.md",
+                     resamples, preset)
+    if tables is not None:
+        tables.mkdir(parents=True, exist_ok=True)
+        for name in ("impacts.csv", "means.csv", "fits.json", "failed.csv", "study.json"):
+            (tables / name).write_bytes((study.folder / name).read_bytes())
+    return summary
+
+
+def report_from_tables(tables: Path, page: Path, resamples: int = 200,
+                       preset: str = "paper") -> dict:
+    """The page and figures of a study from its tables alone (docs/results/).
+
+    Parameters
+    ----------
+    tables : pathlib.Path
+        A folder with impacts.csv, failed.csv and study.json (``report``'s
+        ``tables``); means.csv and fits.json are written again into it.
+    page : pathlib.Path
+        Where the page goes; the figures go into ``figures/`` beside it.
+    resamples, preset
+        As for ``report``.
+
+    Returns
+    -------
+    dict
+        As ``report``.
+    """
+    def read(name: str) -> list[dict]:
+        with (tables / name).open() as handle:
+            return list(csv.DictReader(handle))
+
+    info = json.loads((tables / "study.json").read_text())
+    return render(info, read("impacts.csv"), read("failed.csv"), tables, page, resamples, preset)
+
+
+def render(info: dict, rows: list[dict], failed: list[dict], out: Path, page: Path,
+           resamples: int, preset: str) -> dict:
+    """Tables into ``out``, the figures and the page (see ``report``)."""
+    rows = sorted(rows, key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
     write_csv(rows, out / "impacts.csv", COLUMNS)
+    write_csv(failed, out / "failed.csv", FAILED_COLUMNS)
     means = mean_rows(rows)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     fits = fit_all(rows, resamples)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
-    page = page or out / "results.md"
     figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
-    info = json.loads((out / "study.json").read_text())
     seconds = sum(float(r["wall_seconds"]) for r in rows)
-    # a sample is complete when none of its impacts is pending (done or failed)
-    pending = {job["seed"] for job in jobs
-               if not any((Path(job["folder"]) / name).exists() for name in ("result.json", "failed.json"))}
-    samples_done = len({job["seed"] for job in jobs} - pending)
+    # a sample is complete when every impact of it is done or failed
+    per_sample = len(info["lattices"]) * info["angles"]
+    finished = Counter(int(float(r["seed"])) for r in rows)
+    finished.update(int(float(f["seed"])) for f in failed)
+    samples_done = sum(count >= per_sample for count in finished.values())
     fits_clear = fit_all(clear_of_the_ends(rows, means), resamples, compliant=False)
     figures.draw(means, fits, figure_dir, fits_clear)
     page.write_text(results_page(info, rows, means, fits, figure_dir.relative_to(page.parent).as_posix(),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 from pathlib import Path
 
 from builder.cli import (OneLineParser, add_scene_arguments, add_wall_arguments, count,
@@ -129,6 +130,9 @@ def main(argv: list[str] | None = None) -> int:
     study.add_argument("--max-drift", type=positive_float, default=None,
                        help=MAX_DRIFT_HELP.format(RunOptions().max_drift))
     study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
+    study.add_argument("--from-tables", metavar="DIR", default=None,
+                       help="only docs/results.md and its figures, from a study's tables in DIR "
+                            "(docs/results: the committed paper study), without its runs")
 
     args = parser.parse_args(argv)
     try:
@@ -157,10 +161,15 @@ def main(argv: list[str] | None = None) -> int:
 def run_study_command(args) -> int:
     from dataclasses import replace
 
-    from analysis.report import report
+    from analysis.report import report, report_from_tables
 
-    from .study import PRESETS, run_study
+    from .study import PRESETS, record_wall_clock, run_study
 
+    docs = Path(__file__).resolve().parents[1] / "docs"
+    if args.from_tables:
+        summary = report_from_tables(Path(args.from_tables), docs / "results.md", preset=args.preset)
+        print(f"{summary['rows']} impacts, {summary['failed']} failed; results in {summary['page']}")
+        return 0
     study = PRESETS[args.preset]
     changes = {key: value for key, value in (("samples", args.samples), ("angles", args.angles),
                                               ("name", args.name), ("n_disk", args.n_disk),
@@ -179,15 +188,19 @@ def run_study_command(args) -> int:
     if args.report_only and not (study.folder / "study.json").exists():
         raise InputError(f"--report-only: no study in {study.folder}; run it first")
     if not args.report_only:
+        start = time.monotonic()
         if args.partitions:
             from .partitions import run_study_partitions
-            run_study_partitions(study, args.partitions, args.retry_failed, args.batch_size)
+            counts = run_study_partitions(study, args.partitions, args.retry_failed, args.batch_size)
         else:
-            run_study(study, args.workers, args.retry_failed)
-    # the paper's study, whatever its sample count, is the one the docs show
-    page = Path(__file__).resolve().parents[1] / "docs" / "results.md" \
-        if args.preset == "paper" and args.name is None else None
-    summary = report(study, page=page, preset=args.preset)
+            counts = run_study(study, args.workers, args.retry_failed)
+        record_wall_clock(study, time.monotonic() - start, counts,
+                          args.partitions or args.workers)
+    # the paper's study, whatever its sample count, is the one the docs show, and
+    # its tables go into docs/results/, from which --from-tables remakes the page
+    paper = args.preset == "paper" and args.name is None
+    summary = report(study, page=docs / "results.md" if paper else None, preset=args.preset,
+                     tables=docs / "results" if paper else None)
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (f", {summary['drift_exceeded']} above --max-drift {study.options.max_drift:g}"
              if summary["drift_exceeded"] else "")

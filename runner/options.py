@@ -18,7 +18,7 @@ MAX_CHUNK_TIME = 2.0           # R/c; the shortest contacts last about 9
 
 @dataclass
 class RunOptions:
-    dt: float = 0.012            # time step, R / c (docs/benchmarks/time_vs_error.md)
+    dt: float = 0.008            # time step, R / c (docs/benchmarks/time_vs_error.md, drift_tail.md)
     integrator: str = "verlet"
     nrespa: int = 2              # respa: spring steps per step
     contact: str = "segment"     # segment: the paper's contact; pair: the design card
@@ -27,7 +27,7 @@ class RunOptions:
                                     # harmonic: no quartic
     tmax: float = 100.0          # give up after this time, R / c
     every: int = 10              # steps between rows of series.dat
-    check: int = 100             # steps between checks whether the impact is over (1.2 R/c)
+    check: int = 100             # steps between checks whether the impact is over (0.8 R/c)
     dump_every: int = 0          # steps between dump frames; 0: no dump
     stop_rule: str = "predict"   # predict (rigid-body extrapolation) or clearance (runner/stop_rule.py)
     nprocs: int = 1              # MPI ranks (route lmp)

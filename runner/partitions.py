@@ -126,4 +126,4 @@ def run_study_partitions(study: Study, partitions: int, retry_failed: bool = Fal
                 run_batch(study, batch, partitions, study.folder / ".batch")
                 progress.failed = sum(state(j) == "failed" for j in jobs)
                 progress(sum(state(j) != "pending" for j in jobs) - progress.already)
-    return study.summary(jobs)
+    return {**study.summary(jobs), "ran": len(jobs) - progress.already}

@@ -154,6 +154,24 @@ class Study:
         return counts
 
 
+def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) -> None:
+    """Keep in study.json how long the study's run took, if it ran the whole
+    study at once (a resumed study's time is only part of it)."""
+    path = study.folder / "study.json"
+    info = json.loads(path.read_text())
+    if counts.get("ran") == len(study.jobs()):
+        info["wall_clock"] = {"seconds": round(seconds, 1), "workers": workers,
+                              "cpu": cpu_name(), "cores": os.cpu_count()}
+        path.write_text(json.dumps(info, indent=1))
+
+
+def cpu_name() -> str:
+    for line in Path("/proc/cpuinfo").read_text().splitlines():
+        if line.startswith("model name"):
+            return line.split(":", 1)[1].strip()
+    return "unknown CPU"
+
+
 PRESETS = {
     "paper": Study("paper"),
     "demo": Study("demo", lattices=("random",), angles=16, samples=4),
@@ -272,4 +290,4 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
     if todo:
         run_jobs(lambda job: run_job(study, job), todo, groups, workers,
                  on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
-    return study.summary(jobs)
+    return {**study.summary(jobs), "ran": len(todo)}
