@@ -34,8 +34,12 @@ def open_run(folder: Path | str):
     import MDAnalysis as mda
 
     folder = Path(folder)
-    return mda.Universe(str(folder / "scene.data"), str(folder / "dump.lammpstrj"),
-                        atom_style="id resid type x y z", format="LAMMPSDUMP")
+    return mda.Universe(
+        str(folder / "scene.data"),
+        str(folder / "dump.lammpstrj"),
+        atom_style="id resid type x y z",
+        format="LAMMPSDUMP",
+    )
 
 
 def rigid_motion(atoms) -> tuple[np.ndarray, float, float]:

@@ -9,14 +9,23 @@ import numpy as np
 from .table import near_the_ends
 from .theory import Compliant, compliant_beta, walton_beta
 
-LABELS = {"random": "random", "triangular": "triangular",
-          "square_nu0.1": "square, nu = 0.1", "square_nu0.3": "square, nu = 0.3"}
-STYLE = {"random": ("C0", "o"), "triangular": ("C1", "s"), "square_nu0.1": ("C2", "^"),
-         "square_nu0.3": ("C3", "v")}
+LABELS = {
+    "random": "random",
+    "triangular": "triangular",
+    "square_nu0.1": "square, nu = 0.1",
+    "square_nu0.3": "square, nu = 0.3",
+}
+STYLE = {
+    "random": ("C0", "o"),
+    "triangular": ("C1", "s"),
+    "square_nu0.1": ("C2", "^"),
+    "square_nu0.3": ("C3", "v"),
+}
 
 
 def _axes(ylabel: str):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -36,9 +45,17 @@ def _points(ax, means: list[dict], lattice: str, key: str) -> bool:
     for near, label in ((False, LABELS[lattice]), (True, "_nolegend_")):
         part = [m for m in rows if near_the_ends(m) == near]
         if part:
-            ax.errorbar([m["cot_gamma"] for m in part], [m[key] for m in part],
-                        yerr=[m[f"{key}_se"] for m in part], fmt=marker, color=color, ms=4,
-                        capsize=2, label=label, mfc="none" if near else color)
+            ax.errorbar(
+                [m["cot_gamma"] for m in part],
+                [m[key] for m in part],
+                yerr=[m[f"{key}_se"] for m in part],
+                fmt=marker,
+                color=color,
+                ms=4,
+                capsize=2,
+                label=label,
+                mfc="none" if near else color,
+            )
             ax.open_symbols = getattr(ax, "open_symbols", False) or near
     return True
 
@@ -58,20 +75,30 @@ def _walton(ax, means, fits, lattice, fits_clear=None):
     for source, style, note in ((fits, "-", ""), (fits_clear or {}, "--", " (clear of the ends)")):
         fit = source.get(lattice, {}).get("walton")
         if fit:
-            ax.plot(grid, walton_beta(grid, e, fit["mu"], fit["beta0"], fit["K"]),
-                    color=STYLE[lattice][0], lw=1, ls=style,
-                    label=f"Walton{note}, mu = {fit['mu']:.3f}, beta0 = {fit['beta0']:.3f}")
+            ax.plot(
+                grid,
+                walton_beta(grid, e, fit["mu"], fit["beta0"], fit["K"]),
+                color=STYLE[lattice][0],
+                lw=1,
+                ls=style,
+                label=f"Walton{note}, mu = {fit['mu']:.3f}, beta0 = {fit['beta0']:.3f}",
+            )
 
 
 def _finish(fig, ax, path: Path, empty: str) -> Path:
     if ax.has_data():
-        note = "open symbols: contacts near the wall's ends" if getattr(ax, "open_symbols", False) else None
+        note = (
+            "open symbols: contacts near the wall's ends"
+            if getattr(ax, "open_symbols", False)
+            else None
+        )
         ax.legend(fontsize=7, title=note, title_fontsize=7)
     else:
         ax.text(0.5, 0.5, empty, transform=ax.transAxes, ha="center")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     import matplotlib.pyplot as plt
+
     plt.close(fig)
     return path
 
@@ -103,7 +130,9 @@ def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = 
     for lattice in ("random", "triangular"):
         if _points(ax, means, lattice, "beta"):
             _walton(ax, means, fits, lattice, fits_clear)
-    paths.append(_finish(fig, ax, folder / "beta_random_triangular.png", "no random or triangular data"))
+    paths.append(
+        _finish(fig, ax, folder / "beta_random_triangular.png", "no random or triangular data")
+    )
 
     fig, ax = _axes("e")
     for lattice in LABELS:
@@ -116,15 +145,24 @@ def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = 
         fit = fits.get("random", {}).get("compliant")
         if fit:
             grid, e = _curve_grid(means, "random")
-            curve = [compliant_beta(p, Compliant(e=ei, mu=fit["mu"], nu=fit["nu"], alpha=fit["alpha"]))
-                     for p, ei in zip(grid, e)]
-            ax.plot(grid, curve, color="k", lw=1.2,
-                    label=f"compliant model, mu = {fit['mu']:.3f} (nu = {fit['nu']:.3f})")
+            curve = [
+                compliant_beta(p, Compliant(e=ei, mu=fit["mu"], nu=fit["nu"], alpha=fit["alpha"]))
+                for p, ei in zip(grid, e)
+            ]
+            ax.plot(
+                grid,
+                curve,
+                color="k",
+                lw=1.2,
+                label=f"compliant model, mu = {fit['mu']:.3f} (nu = {fit['nu']:.3f})",
+            )
     paths.append(_finish(fig, ax, folder / "beta_compliant.png", "no random-lattice data"))
 
     fig, ax = _axes("beta")
     for lattice in ("square_nu0.1", "square_nu0.3"):
         if _points(ax, means, lattice, "beta"):
             _walton(ax, means, fits, lattice, fits_clear)
-    paths.append(_finish(fig, ax, folder / "beta_square.png", "no square-lattice data in this study"))
+    paths.append(
+        _finish(fig, ax, folder / "beta_square.png", "no square-lattice data in this study")
+    )
     return paths

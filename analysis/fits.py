@@ -74,6 +74,7 @@ def fit_walton(data: Means, K: float) -> np.ndarray:
     numpy.ndarray
         The weighted least-squares (mu, beta0).
     """
+
     def residuals(p):
         return (walton_beta(data.psi, data.e, p[0], p[1], K) - data.beta) / data.beta_se
 
@@ -100,17 +101,21 @@ def fit_compliant(data: Means, nu: float, alpha: float) -> np.ndarray:
     numpy.ndarray
         The weighted least-squares (mu,), one element.
     """
+
     def residuals(p):
-        model = [compliant_beta(psi, Compliant(e=e, mu=p[0], nu=nu, alpha=alpha))
-                 for psi, e in zip(data.psi, data.e)]
+        model = [
+            compliant_beta(psi, Compliant(e=e, mu=p[0], nu=nu, alpha=alpha))
+            for psi, e in zip(data.psi, data.e)
+        ]
         return (np.array(model) - data.beta) / data.beta_se
 
     mu = min(MU_GRID, key=lambda m: np.sum(residuals([m]) ** 2))
     return least_squares(residuals, [mu], bounds=([1e-4], [5.0])).x
 
 
-def bootstrap(groups: list[np.ndarray], fit, resamples: int = 200,
-              rng: np.random.Generator | None = None) -> tuple[np.ndarray, np.ndarray]:
+def bootstrap(
+    groups: list[np.ndarray], fit, resamples: int = 200, rng: np.random.Generator | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """The fit to the data and the standard deviation of fits to resamples.
 
     Parameters
@@ -160,4 +165,4 @@ def reduced_chi2(data: Means, model_beta: np.ndarray, parameters: int) -> float:
         chi2 / (angles - parameters), the divisor at least 1.
     """
     residuals = (np.asarray(model_beta) - data.beta) / data.beta_se
-    return float(np.sum(residuals ** 2) / max(len(residuals) - parameters, 1))
+    return float(np.sum(residuals**2) / max(len(residuals) - parameters, 1))

@@ -14,10 +14,10 @@ import numpy as np
 
 @dataclass
 class Rebound:
-    e: float                   # -V'_y / V_y
-    beta: float | None         # -(V'_x + R w') / (V_x + R w); None for a head-on impact
-    cot_gamma: float | None    # |V_y| / (V_x + R w) before
-    omega: float               # angular velocity after, L' / I0
+    e: float  # -V'_y / V_y
+    beta: float | None  # -(V'_x + R w') / (V_x + R w); None for a head-on impact
+    cot_gamma: float | None  # |V_y| / (V_x + R w) before
+    omega: float  # angular velocity after, L' / I0
     vx_in: float
     vy_in: float
     vx_out: float
@@ -27,8 +27,14 @@ class Rebound:
         return asdict(self)
 
 
-def rebound(v_in: np.ndarray, v_out: np.ndarray, omega_in: float, omega_out: float,
-            radius: float = 1.0, tangential: bool | None = None) -> Rebound:
+def rebound(
+    v_in: np.ndarray,
+    v_out: np.ndarray,
+    omega_in: float,
+    omega_out: float,
+    radius: float = 1.0,
+    tangential: bool | None = None,
+) -> Rebound:
     """e, beta and cot(gamma) from centre-of-mass velocities and angular velocities.
 
     Parameters
@@ -57,13 +63,16 @@ def rebound(v_in: np.ndarray, v_out: np.ndarray, omega_in: float, omega_out: flo
         beta=float(-slip_out / slip_in) if tangential else None,
         cot_gamma=float(abs(v_in[1]) / slip_in) if tangential else None,
         omega=float(omega_out),
-        vx_in=float(v_in[0]), vy_in=float(v_in[1]),
-        vx_out=float(v_out[0]), vy_out=float(v_out[1]),
+        vx_in=float(v_in[0]),
+        vy_in=float(v_in[1]),
+        vx_out=float(v_out[0]),
+        vy_out=float(v_out[1]),
     )
 
 
-def rebound_from_series(series: np.ndarray, radius: float = 1.0,
-                        tangential: bool | None = None) -> Rebound:
+def rebound_from_series(
+    series: np.ndarray, radius: float = 1.0, tangential: bool | None = None
+) -> Rebound:
     """Rebound from the first row (before contact) and the last (after it).
 
     After the contact the angular momentum is constant but the moment of
@@ -86,8 +95,14 @@ def rebound_from_series(series: np.ndarray, radius: float = 1.0,
     """
     first, last = series[0], series[-1]
     inertia = first["Izz"]
-    return rebound(np.array([first["vx"], first["vy"]]), np.array([last["vx"], last["vy"]]),
-                   first["Lz"] / inertia, last["Lz"] / inertia, radius, tangential)
+    return rebound(
+        np.array([first["vx"], first["vy"]]),
+        np.array([last["vx"], last["vy"]]),
+        first["Lz"] / inertia,
+        last["Lz"] / inertia,
+        radius,
+        tangential,
+    )
 
 
 def contact_window(series: np.ndarray) -> tuple[float, float]:
@@ -172,9 +187,19 @@ def energy_split(series: np.ndarray, energies: np.ndarray, mass: float) -> dict:
     start, end = energies[0], energies[-1]
     first, last = series[0], series[-1]
     e_in = start["ke_disk"]
-    rigid_out = 0.5 * mass * (last["vx"] ** 2 + last["vy"] ** 2) + 0.5 * last["Lz"] ** 2 / first["Izz"]
-    e_total_in = start["ke_disk"] + start["pe_disk"] + start["ke_wall"] + start["pe_wall"] + start["pe_contact"]
-    e_total_out = end["ke_disk"] + end["pe_disk"] + end["ke_wall"] + end["pe_wall"] + end["pe_contact"]
+    rigid_out = (
+        0.5 * mass * (last["vx"] ** 2 + last["vy"] ** 2) + 0.5 * last["Lz"] ** 2 / first["Izz"]
+    )
+    e_total_in = (
+        start["ke_disk"]
+        + start["pe_disk"]
+        + start["ke_wall"]
+        + start["pe_wall"]
+        + start["pe_contact"]
+    )
+    e_total_out = (
+        end["ke_disk"] + end["pe_disk"] + end["ke_wall"] + end["pe_wall"] + end["pe_contact"]
+    )
     return {
         "vibration_disk": float((end["ke_disk"] + end["pe_disk"] - rigid_out) / e_in),
         "vibration_wall": float((end["ke_wall"] + end["pe_wall"]) / e_in),

@@ -7,8 +7,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from .restitution import (contact_window, energy_split, rebound_from_series, side_clearance,
-                          touches)
+from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
 from .series import read_energies, read_series
 
 # The energy drift (change of the total energy over the initial kinetic
@@ -20,9 +19,24 @@ from .series import read_energies, read_series
 # (docs/benchmarks/time_vs_error.md).
 MAX_DRIFT = 0.05
 # What the study's tables read from every result.json.
-REQUIRED = ("lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta", "omega", "contact_time",
-            "vibration_disk", "vibration_wall", "energy_drift", "side_clearance",
-            "disk_inertia_ratio", "nu", "steps", "wall_seconds")
+REQUIRED = (
+    "lattice",
+    "seed",
+    "gamma_deg",
+    "cot_gamma",
+    "e",
+    "beta",
+    "omega",
+    "contact_time",
+    "vibration_disk",
+    "vibration_wall",
+    "energy_drift",
+    "side_clearance",
+    "disk_inertia_ratio",
+    "nu",
+    "steps",
+    "wall_seconds",
+)
 
 
 class UnreadableResult(ValueError):
@@ -91,8 +105,10 @@ def analyse_run(folder: Path | str) -> dict:
         "c_source": scene["units"]["c_source"],
         "nu": scene["disk_material"]["nu"],
         "stop_rule": run["options"].get("stop_rule", "clearance"),
-        "vx_in": rebound.vx_in, "vy_in": rebound.vy_in,
-        "vx_out": rebound.vx_out, "vy_out": rebound.vy_out,
+        "vx_in": rebound.vx_in,
+        "vy_in": rebound.vy_in,
+        "vx_out": rebound.vx_out,
+        "vy_out": rebound.vy_out,
     }
     result.update(energy_split(series, energies, scene["disk_mass"]))
     # results written before the option existed were judged by the default
@@ -106,14 +122,15 @@ def read_result(path: Path | str) -> dict:
     path = Path(path)
     try:
         values = json.loads(path.read_text())
-    except (ValueError, OSError) as error:        # JSONDecodeError and UnicodeDecodeError are ValueErrors
+    except (ValueError, OSError) as error:  # JSONDecodeError and UnicodeDecodeError are ValueErrors
         raise UnreadableResult(f"{path}: unreadable ({error})") from None
     if not isinstance(values, dict):
         raise UnreadableResult(f"{path}: not a JSON object")
     missing = [key for key in REQUIRED if key not in values]
     if missing:
-        raise UnreadableResult(f"{path}: incomplete (no {', '.join(missing[:4])}"
-                               f"{', ...' if len(missing) > 4 else ''})")
+        raise UnreadableResult(
+            f"{path}: incomplete (no {', '.join(missing[:4])}{', ...' if len(missing) > 4 else ''})"
+        )
     return values
 
 

@@ -6,8 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-COLUMNS = ("step", "time", "x", "y", "vx", "vy", "Lz", "Izz", "omega_z", "fx", "fy",
-           "pe_contact")
+COLUMNS = ("step", "time", "x", "y", "vx", "vy", "Lz", "Izz", "omega_z", "fx", "fy", "pe_contact")
 
 
 def read_series(path: Path | str) -> np.ndarray:

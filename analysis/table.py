@@ -12,15 +12,59 @@ import numpy as np
 from .result import MAX_DRIFT, UnreadableResult, read_result
 
 # The columns of impacts.csv, in order; every result.json has them.
-COLUMNS = ("study_lattice", "lattice", "seed", "gamma_deg", "cot_gamma", "vn", "e", "beta", "omega",
-           "contact_time", "touches", "vibration_disk", "vibration_wall", "energy_drift",
-           "drift_exceeded", "side_clearance", "wall_width", "n_wall", "wall_ka", "wall_fixed",
-           "n_wall_points", "ka_wall_over_disk", "disk_inertia_ratio", "nu", "steps", "time_end",
-           "wall_seconds", "dt", "integrator",
-           "contact", "stop_rule", "lammps_version", "git_revision")
-MEAN_COLUMNS = ("study_lattice", "gamma_deg", "cot_gamma", "samples", "e", "e_se", "beta",
-                "beta_se", "omega", "omega_se", "contact_time", "contact_time_se",
-                "vibration_disk", "vibration_wall", "disk_inertia_ratio", "near_side")
+COLUMNS = (
+    "study_lattice",
+    "lattice",
+    "seed",
+    "gamma_deg",
+    "cot_gamma",
+    "vn",
+    "e",
+    "beta",
+    "omega",
+    "contact_time",
+    "touches",
+    "vibration_disk",
+    "vibration_wall",
+    "energy_drift",
+    "drift_exceeded",
+    "side_clearance",
+    "wall_width",
+    "n_wall",
+    "wall_ka",
+    "wall_fixed",
+    "n_wall_points",
+    "ka_wall_over_disk",
+    "disk_inertia_ratio",
+    "nu",
+    "steps",
+    "time_end",
+    "wall_seconds",
+    "dt",
+    "integrator",
+    "contact",
+    "stop_rule",
+    "lammps_version",
+    "git_revision",
+)
+MEAN_COLUMNS = (
+    "study_lattice",
+    "gamma_deg",
+    "cot_gamma",
+    "samples",
+    "e",
+    "e_se",
+    "beta",
+    "beta_se",
+    "omega",
+    "omega_se",
+    "contact_time",
+    "contact_time_se",
+    "vibration_disk",
+    "vibration_wall",
+    "disk_inertia_ratio",
+    "near_side",
+)
 # A contact whose disk centre came within a radius of a fixed side of the wall
 # felt the wall's end (docs/model.md); means.csv counts them, and an angle
 # where more than a tenth of a lattice's contacts did is left out of the fits
@@ -87,11 +131,13 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
             try:
                 values = read_result(result)
             except UnreadableResult as error:
-                print(f"warning: {error}; left out of the tables (running the study again "
-                      f"reruns it)", file=sys.stderr)
+                print(
+                    f"warning: {error}; left out of the tables (running the study again reruns it)",
+                    file=sys.stderr,
+                )
                 continue
             scene_file = Path(folder) / "scene.json"
-            if "n_wall" not in values and scene_file.exists():   # results from before the readings
+            if "n_wall" not in values and scene_file.exists():  # results from before the readings
                 scene = json.loads(scene_file.read_text())
                 spec = scene["spec"]
                 values.setdefault("wall_width", spec["wall_width"])
@@ -100,7 +146,7 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 values["wall_ka"] = spec.get("wall_ka", "same-c")
                 values["wall_fixed"] = spec["wall_fixed"]
                 values["ka_wall_over_disk"] = scene["ka_wall"] / scene["ka_disk"]
-            if "drift_exceeded" not in values:   # nor this one
+            if "drift_exceeded" not in values:  # nor this one
                 values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
             rows.append(row(values, lattice))
     return rows
@@ -127,11 +173,21 @@ def mean_rows(rows: list[dict]) -> list[dict]:
     out = []
     for (lattice, gamma), group in sorted(groups.items()):
         mean = {"study_lattice": lattice, "gamma_deg": gamma, "samples": len(group)}
-        for name in ("cot_gamma", "e", "beta", "omega", "contact_time", "vibration_disk",
-                     "vibration_wall", "disk_inertia_ratio"):
+        for name in (
+            "cot_gamma",
+            "e",
+            "beta",
+            "omega",
+            "contact_time",
+            "vibration_disk",
+            "vibration_wall",
+            "disk_inertia_ratio",
+        ):
             values = np.array([float(r[name]) for r in group])
             mean[name] = float(values.mean())
-            mean[f"{name}_se"] = float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else 0.0
+            mean[f"{name}_se"] = (
+                float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else 0.0
+            )
         mean["near_side"] = sum(float(r["side_clearance"]) < NEAR_SIDE for r in group)
         out.append(mean)
     return out
@@ -156,5 +212,6 @@ def groups(rows: list[dict], lattice: str) -> list[np.ndarray]:
     for r in rows:
         if r["study_lattice"] == lattice:
             by_angle.setdefault(float(r["gamma_deg"]), []).append(
-                (float(r["cot_gamma"]), float(r["e"]), float(r["beta"])))
+                (float(r["cot_gamma"]), float(r["e"]), float(r["beta"]))
+            )
     return [np.array(by_angle[g]) for g in sorted(by_angle)]

@@ -75,7 +75,7 @@ class Compliant:
     e: float
     mu: float
     nu: float
-    alpha: float = 3.0          # K = 1 + M R^2 / I
+    alpha: float = 3.0  # K = 1 + M R^2 / I
 
     @property
     def omega(self) -> float:
@@ -108,7 +108,7 @@ class Compliant:
 def _first_root(function, start: float, end: float, samples: int = 400) -> float | None:
     """The first zero of ``function`` in (start, end], by a scan and Brent's method."""
     grid = np.linspace(start, end, samples + 1)
-    values = np.asarray(function(grid), float)          # the functions take arrays
+    values = np.asarray(function(grid), float)  # the functions take arrays
     # a zero at the very start is the transition just made, not a new one
     for k in range(1, samples + 1):
         if values[k] == 0.0:
@@ -135,7 +135,7 @@ def compliant_beta(psi: float, model: Compliant) -> float:
     """
     alpha, mu, omega = model.alpha, model.mu, model.omega
     t, u, f = 0.0, 1.0 / psi, 0.0
-    sticking = u <= mu * alpha / omega**2          # initial stick: tan gamma <= mu eta^2
+    sticking = u <= mu * alpha / omega**2  # initial stick: tan gamma <= mu eta^2
     direction = 1.0
     while t < model.end:
         if sticking:
@@ -143,12 +143,16 @@ def compliant_beta(psi: float, model: Compliant) -> float:
 
             def state(time):
                 theta = omega * (time - t0)
-                return (u0 * np.cos(theta) - alpha * f0 / omega * np.sin(theta),
-                        f0 * np.cos(theta) + omega * u0 / alpha * np.sin(theta))
+                return (
+                    u0 * np.cos(theta) - alpha * f0 / omega * np.sin(theta),
+                    f0 * np.cos(theta) + omega * u0 / alpha * np.sin(theta),
+                )
 
             # slip again when the spring force reaches mu n (after the normal
             # force has started to fall, or at once if it is already there)
-            slip = _first_root(lambda time: abs(state(time)[1]) - mu * model.force(time), t0, model.end)
+            slip = _first_root(
+                lambda time: abs(state(time)[1]) - mu * model.force(time), t0, model.end
+            )
             t = slip if slip is not None else model.end
             u, f = state(t)
             if slip is not None:
@@ -161,8 +165,13 @@ def compliant_beta(psi: float, model: Compliant) -> float:
                 return u0 - alpha * mu * s * (model.impulse(time) - model.impulse(t0))
 
             # stick when the slider stops: u equals the spring's rate of stretch
-            stick = _first_root(lambda time: s * (velocity(time) - alpha * mu * s / omega**2
-                                                  * model.force_rate(time)), t0, model.end)
+            stick = _first_root(
+                lambda time: (
+                    s * (velocity(time) - alpha * mu * s / omega**2 * model.force_rate(time))
+                ),
+                t0,
+                model.end,
+            )
             t = stick if stick is not None else model.end
             u, f = velocity(t), mu * s * model.force(t)
             if stick is not None:

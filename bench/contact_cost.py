@@ -34,13 +34,35 @@ ANGLES = (5.7, 26.6, 55.0, 80.4)
 
 def timed_run(scene: Path, contact: str, steps: int) -> dict[str, float]:
     log = scene / f"bench_{contact}.log"
-    subprocess.run(["lmp", "-in", "bench/contact_cost.lmp", "-var", "scene", str(scene),
-                    "-var", "contact", contact, "-var", "steps", str(steps),
-                    "-log", str(log), "-screen", "none", "-nocite"], cwd=ROOT, check=True)
+    subprocess.run(
+        [
+            "lmp",
+            "-in",
+            "bench/contact_cost.lmp",
+            "-var",
+            "scene",
+            str(scene),
+            "-var",
+            "contact",
+            contact,
+            "-var",
+            "steps",
+            str(steps),
+            "-log",
+            str(log),
+            "-screen",
+            "none",
+            "-nocite",
+        ],
+        cwd=ROOT,
+        check=True,
+    )
     text = log.read_text()
     loop = float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1))
-    sections = {name: float(re.search(rf"^{name}\s*\|\s*([\d.eE+-]+)", text, re.M).group(1))
-                for name in ("Pair", "Neigh", "Bond")}
+    sections = {
+        name: float(re.search(rf"^{name}\s*\|\s*([\d.eE+-]+)", text, re.M).group(1))
+        for name in ("Pair", "Neigh", "Bond")
+    }
     return {"loop": loop, **sections}
 
 
@@ -56,11 +78,26 @@ def cost_table(scene: Path, repeats: int, steps: int) -> str:
         pair = median([t["Pair"] for t in times[contact]])
         neigh = median([t["Neigh"] for t in times[contact]])
         extra = (loop - none) / loop * 100
-        rows.append([contact, f"{steps / loop:,.0f}", f"{pair / loop * 100:.1f}",
-                     f"{neigh / loop * 100:.1f}", "-" if contact == "none" else f"{extra:+.1f}"])
+        rows.append(
+            [
+                contact,
+                f"{steps / loop:,.0f}",
+                f"{pair / loop * 100:.1f}",
+                f"{neigh / loop * 100:.1f}",
+                "-" if contact == "none" else f"{extra:+.1f}",
+            ]
+        )
         print(" ".join(rows[-1]), flush=True)
-    return markdown_table(["contact", "steps/s", "Pair % of step", "Neigh % of step",
-                           "cost over no contact, % of step"], rows)
+    return markdown_table(
+        [
+            "contact",
+            "steps/s",
+            "Pair % of step",
+            "Neigh % of step",
+            "cost over no contact, % of step",
+        ],
+        rows,
+    )
 
 
 def restitution_table(tmp: Path, seeds: int) -> str:
@@ -77,12 +114,17 @@ def restitution_table(tmp: Path, seeds: int) -> str:
                         cells += [f"{r['e']:.3f}", f"{r['beta']:+.3f}"]
                     except LammpsError as error:
                         when = re.search(r"at time ([\d.]+)", str(error))
-                        cells += [f"disk entered the wall (t = {float(when.group(1)):.1f})"
-                                  if when else str(error)[:40], ""]
+                        cells += [
+                            f"disk entered the wall (t = {float(when.group(1)):.1f})"
+                            if when
+                            else str(error)[:40],
+                            "",
+                        ]
                 rows.append([f"{vn}", str(seed), f"{gamma:g}", *cells])
                 print(" ".join(rows[-1]), flush=True)
-    return markdown_table(["vn", "seed", "gamma", "e segment", "beta segment", "e pair",
-                           "beta pair"], rows)
+    return markdown_table(
+        ["vn", "seed", "gamma", "e segment", "beta segment", "e pair", "beta pair"], rows
+    )
 
 
 def main() -> None:
@@ -96,11 +138,15 @@ def main() -> None:
         scene = write_scene(build_scene(SceneSpec(gamma_deg=45.0)), tmp / "scene")
         costs = cost_table(scene, args.repeats, args.steps)
         restitution = restitution_table(tmp, args.seeds)
-    body = (f"## Cost per step\n\nDefault scene, {args.steps} steps from the start of the impact, "
-            f"medians of {args.repeats} interleaved runs, serial.\n\n{costs}\n\n"
-            f"## e and beta: segment contact against the pair variant\n\n{restitution}\n")
+    body = (
+        f"## Cost per step\n\nDefault scene, {args.steps} steps from the start of the impact, "
+        f"medians of {args.repeats} interleaved runs, serial.\n\n{costs}\n\n"
+        f"## e and beta: segment contact against the pair variant\n\n{restitution}\n"
+    )
     print(body)
-    print(f"wrote {write_report('contact_cost', 'Contact: cost and pair variant', 'python bench/contact_cost.py', body)}")
+    print(
+        f"wrote {write_report('contact_cost', 'Contact: cost and pair variant', 'python bench/contact_cost.py', body)}"
+    )
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ from builder.scene import build_scene
 from runner.impact import run_scene
 from runner.study import PRESETS
 
-ENERGY_TOLERANCE = 5e-3     # make bench's criterion on rough scenes
+ENERGY_TOLERANCE = 5e-3  # make bench's criterion on rough scenes
 
 
 def main() -> None:
@@ -41,35 +41,51 @@ def main() -> None:
 
     with args.impacts.open() as handle:
         rows = sorted(csv.DictReader(handle), key=lambda r: -abs(float(r["energy_drift"])))
-    worst = rows[:args.worst]
+    worst = rows[: args.worst]
     study = PRESETS["paper"]
     drift = np.zeros((len(worst), len(args.dts)))
     with tempfile.TemporaryDirectory() as tmp:
         for i, row in enumerate(worst):
-            job = {"lattice": row["study_lattice"], "seed": int(row["seed"]),
-                   "gamma": float(row["gamma_deg"])}
-            folder = write_scene(build_scene(study.spec(job)), Path(tmp) / "scene",
-                                 study.options.springs)
+            job = {
+                "lattice": row["study_lattice"],
+                "seed": int(row["seed"]),
+                "gamma": float(row["gamma_deg"]),
+            }
+            folder = write_scene(
+                build_scene(study.spec(job)), Path(tmp) / "scene", study.options.springs
+            )
             for j, dt in enumerate(args.dts):
                 result = run_scene(folder, replace(study.options, dt=dt))
                 drift[i, j] = abs(result["energy_drift"])
             print(job, " ".join(f"{d:.1e}" for d in drift[i]), flush=True)
 
-    table = [[r["study_lattice"], r["seed"], f"{float(r['gamma_deg']):g}",
-              *(f"{d:.1e}" for d in drift[i])] for i, r in enumerate(worst)]
+    table = [
+        [
+            r["study_lattice"],
+            r["seed"],
+            f"{float(r['gamma_deg']):g}",
+            *(f"{d:.1e}" for d in drift[i]),
+        ]
+        for i, r in enumerate(worst)
+    ]
     for name, value in (("median", np.median(drift, axis=0)), ("largest", drift.max(axis=0))):
         table.append([f"**{name}**", "", "", *(f"{v:.1e}" for v in value)])
-    for name, bound in ((f"above {ENERGY_TOLERANCE:g}", ENERGY_TOLERANCE),
-                        (f"above {MAX_DRIFT:g}", MAX_DRIFT)):
+    for name, bound in (
+        (f"above {ENERGY_TOLERANCE:g}", ENERGY_TOLERANCE),
+        (f"above {MAX_DRIFT:g}", MAX_DRIFT),
+    ):
         table.append([f"**{name}**", "", "", *(str(int(n)) for n in (drift > bound).sum(axis=0))])
-    body = (f"The {args.worst} impacts of `{args.impacts}` ({len(rows)} impacts) with the "
-            "largest |energy drift| (the change of the total energy over the initial kinetic "
-            "energy), each run again at every step, with the study's other settings.\n\n"
-            + markdown_table(["lattice", "seed", "gamma", *(f"dt = {dt:g}" for dt in args.dts)],
-                             table))
+    body = (
+        f"The {args.worst} impacts of `{args.impacts}` ({len(rows)} impacts) with the "
+        "largest |energy drift| (the change of the total energy over the initial kinetic "
+        "energy), each run again at every step, with the study's other settings.\n\n"
+        + markdown_table(["lattice", "seed", "gamma", *(f"dt = {dt:g}" for dt in args.dts)], table)
+    )
     print(body)
-    command = (f"python bench/drift_tail.py --impacts {args.impacts} --worst {args.worst} --dts "
-               + " ".join(f"{dt:g}" for dt in args.dts))
+    command = (
+        f"python bench/drift_tail.py --impacts {args.impacts} --worst {args.worst} --dts "
+        + " ".join(f"{dt:g}" for dt in args.dts)
+    )
     print(f"wrote {write_report('drift_tail', 'The tail of the energy drift', command, body)}")
 
 

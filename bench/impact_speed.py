@@ -41,13 +41,24 @@ def main() -> None:
                     rates.append(steps / seconds)
                     walls.append(result["wall_seconds"])
                 rate = median(rates)
-                rows.append([springs, str(nprocs), str(steps), f"{rate:,.0f}",
-                             f"{rate * atoms / 1e6:.1f}", f"{median(walls):.2f}"])
+                rows.append(
+                    [
+                        springs,
+                        str(nprocs),
+                        str(steps),
+                        f"{rate:,.0f}",
+                        f"{rate * atoms / 1e6:.1f}",
+                        f"{median(walls):.2f}",
+                    ]
+                )
                 print(" ".join(rows[-1]), flush=True)
-    body = (f"Default scene: {atoms} atoms, {scene.info['n_springs']} springs, "
-            f"medians of {args.repeats} runs.\n\n"
-            + markdown_table(["springs", "ranks", "steps", "steps/s", "Matom-steps/s",
-                              "wall s per impact"], rows))
+    body = (
+        f"Default scene: {atoms} atoms, {scene.info['n_springs']} springs, "
+        f"medians of {args.repeats} runs.\n\n"
+        + markdown_table(
+            ["springs", "ranks", "steps", "steps/s", "Matom-steps/s", "wall s per impact"], rows
+        )
+    )
     print(body)
     print(f"wrote {write_report('impact_speed', 'Impact speed', 'make bench-impact', body)}")
 

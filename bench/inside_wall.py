@@ -36,7 +36,7 @@ def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int)
     """What a frame shows about the disk and the wall's surface (atoms in tag
     order; MDAnalysis shifts positions by the box's corner, so heights and
     sides are taken from the wall's held points, which do not move)."""
-    row = x[first - 1:last]
+    row = x[first - 1 : last]
     disk = (types == DISK_SURFACE) | (types == DISK_INTERIOR)
     surface = np.flatnonzero(types == DISK_SURFACE)
     centre = x[disk].mean(axis=0)
@@ -44,11 +44,15 @@ def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int)
     inside = np.flatnonzero(Polygon(x[surface][order]).contains_points(row)) + first
     folds = np.flatnonzero(np.diff(row[:, 0]) <= 0.0) + first
     held = x[types == WALL_FIXED]
-    return {"step": step, "wall points inside the disk": inside.tolist(),
-            "folds (segment starts)": folds.tolist(),
-            "deepest sag of the wall's surface, R": round(float(held[:, 1].max() - row[:, 1].min()), 3),
-            "disk centre to the nearer held side, R":
-                round(float(min(centre[0] - held[:, 0].min(), held[:, 0].max() - centre[0])), 3)}
+    return {
+        "step": step,
+        "wall points inside the disk": inside.tolist(),
+        "folds (segment starts)": folds.tolist(),
+        "deepest sag of the wall's surface, R": round(float(held[:, 1].max() - row[:, 1].min()), 3),
+        "disk centre to the nearer held side, R": round(
+            float(min(centre[0] - held[:, 0].min(), held[:, 0].max() - centre[0])), 3
+        ),
+    }
 
 
 def main() -> None:
@@ -61,8 +65,13 @@ def main() -> None:
     parser.add_argument("--frames", type=int, default=4, help="frames before the stop to report")
     args = parser.parse_args()
 
-    spec = SceneSpec(seed=args.seed, gamma_deg=args.gamma, n_wall=args.n_wall,
-                     wall_ka=args.wall_ka, wall_fixed=args.wall_fixed)
+    spec = SceneSpec(
+        seed=args.seed,
+        gamma_deg=args.gamma,
+        n_wall=args.n_wall,
+        wall_ka=args.wall_ka,
+        wall_fixed=args.wall_fixed,
+    )
     scene = build_scene(spec)
     options = PRESETS["paper"].options
     with tempfile.TemporaryDirectory() as tmp:
@@ -78,7 +87,7 @@ def main() -> None:
         order = np.argsort(universe.atoms.ids)
         types = universe.atoms.types.astype(int)[order]
         first, last = scene.info["wall_row_tags"]
-        for ts in universe.trajectory[-args.frames:]:
+        for ts in universe.trajectory[-args.frames :]:
             x = universe.atoms.positions[order, :2].astype(float)
             print(diagnose(ts.data.get("step", ts.frame), x, types, first, last))
 

@@ -45,22 +45,33 @@ from runner.options import RunOptions
 ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")
 
 
-def run(scene: Scene, name: str, dt: float, ranks: int, until: float, deck: dict | None = None) -> dict:
+def run(
+    scene: Scene, name: str, dt: float, ranks: int, until: float, deck: dict | None = None
+) -> dict:
     """Run the scene into the contact; steps/s, the energies at the end and the
     change of the total energy. ``deck`` overrides the scene's own settings."""
     folder = ROOT / "runs" / "bench" / name
     shutil.rmtree(folder, ignore_errors=True)
     write_scene(scene, folder, "class2")
     # early_stop no: run to tmax whatever the contact does
-    variables = {"scene": str(folder), "out": str(folder),
-                 **RunOptions(dt=dt, tmax=until, every=100).deck_variables(),
-                 "early_stop": "no", **(deck or {})}
+    variables = {
+        "scene": str(folder),
+        "out": str(folder),
+        **RunOptions(dt=dt, tmax=until, every=100).deck_variables(),
+        "early_stop": "no",
+        **(deck or {}),
+    }
     wall = run_lmp(variables, folder / "log.lammps", ranks)
     seconds, steps = loop_seconds(folder / "log.lammps")
     energies = read_energies(folder / "energy.dat")
     total = [sum(row[k] for k in ENERGIES) for row in (energies[0], energies[-1])]
-    return {"steps": steps, "rate": steps / seconds, "wall": wall, "end": energies[-1],
-            "change": (total[1] - total[0]) / total[0]}
+    return {
+        "steps": steps,
+        "rate": steps / seconds,
+        "wall": wall,
+        "end": energies[-1],
+        "change": (total[1] - total[0]) / total[0],
+    }
 
 
 def main() -> None:
@@ -68,15 +79,20 @@ def main() -> None:
     parser.add_argument("--n-disk", type=int, default=20000)
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--time", type=float, default=1.6, help="run to this time, R/c")
-    parser.add_argument("--no-decay-table", action="store_true",
-                        help="leave out the runs at the study's decay rate")
-    parser.add_argument("--whole", action="store_true",
-                        help="also run the whole impact on the largest number of ranks")
+    parser.add_argument(
+        "--no-decay-table", action="store_true", help="leave out the runs at the study's decay rate"
+    )
+    parser.add_argument(
+        "--whole",
+        action="store_true",
+        help="also run the whole impact on the largest number of ranks",
+    )
     args = parser.parse_args()
     scale = math.sqrt(800 / args.n_disk)
     dt, roughness, contact_a = 4e-3 * scale, 0.03 * scale, 300.0 / scale
-    scene = build_scene(SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness,
-                                  contact_a=contact_a))
+    scene = build_scene(
+        SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness, contact_a=contact_a)
+    )
     cutoff = scene.info["contact"]["cutoff"]
 
     rows, reference = [], None
@@ -84,19 +100,43 @@ def main() -> None:
         out = run(scene, f"large_{args.n_disk}_np{ranks}", dt, ranks, args.time)
         end = out["end"]
         reference = reference or end
-        difference = max(abs(end[k] - reference[k]) / abs(reference[k])
-                         for k in ("ke_disk", "pe_disk", "pe_contact") if reference[k])
-        rows.append([str(ranks), str(out["steps"]), f"{out['rate']:,.0f}", f"{out['wall']:.0f}",
-                     f"{end['ke_disk']:.10g}", f"{end['pe_contact']:.6g}",
-                     f"{out['change']:+.1e}", f"{difference:.1e}"])
+        difference = max(
+            abs(end[k] - reference[k]) / abs(reference[k])
+            for k in ("ke_disk", "pe_disk", "pe_contact")
+            if reference[k]
+        )
+        rows.append(
+            [
+                str(ranks),
+                str(out["steps"]),
+                f"{out['rate']:,.0f}",
+                f"{out['wall']:.0f}",
+                f"{end['ke_disk']:.10g}",
+                f"{end['pe_contact']:.6g}",
+                f"{out['change']:+.1e}",
+                f"{difference:.1e}",
+            ]
+        )
         print(" ".join(rows[-1]), flush=True)
-    body = (f"Random lattice, 45 degrees, 0.1 c: {scene.info['n_atoms']:,} atoms, "
-            f"{scene.info['n_springs']:,} springs, dt = {dt:.2e} R/c, roughness {roughness:.4f} R, "
-            f"a R = {contact_a:.0f} ({contact_a * cutoff:.1f} decay lengths within the cutoff), "
-            f"run to t = {args.time} R/c (into the contact).\n\n"
-            + markdown_table(["ranks", "steps", "steps/s", "wall s", "disk kinetic energy at the end",
-                              "contact energy at the end", "total energy change",
-                              "largest relative difference from 1 rank"], rows))
+    body = (
+        f"Random lattice, 45 degrees, 0.1 c: {scene.info['n_atoms']:,} atoms, "
+        f"{scene.info['n_springs']:,} springs, dt = {dt:.2e} R/c, roughness {roughness:.4f} R, "
+        f"a R = {contact_a:.0f} ({contact_a * cutoff:.1f} decay lengths within the cutoff), "
+        f"run to t = {args.time} R/c (into the contact).\n\n"
+        + markdown_table(
+            [
+                "ranks",
+                "steps",
+                "steps/s",
+                "wall s",
+                "disk kinetic energy at the end",
+                "contact energy at the end",
+                "total energy change",
+                "largest relative difference from 1 rank",
+            ],
+            rows,
+        )
+    )
 
     if args.whole:
         ranks = max(args.ranks)
@@ -104,14 +144,25 @@ def main() -> None:
         shutil.rmtree(folder, ignore_errors=True)
         write_scene(scene, folder, "class2")
         result = run_scene(folder, RunOptions(dt=dt, nprocs=ranks, every=100))
-        whole = [[str(ranks), str(result["steps"]), f"{result['time_end']:.1f}",
-                  f"{result['wall_seconds'] / 60:.1f}", f"{result['e']:.4f}", f"{result['beta']:+.4f}",
-                  f"{result['energy_drift']:+.1e}"]]
+        whole = [
+            [
+                str(ranks),
+                str(result["steps"]),
+                f"{result['time_end']:.1f}",
+                f"{result['wall_seconds'] / 60:.1f}",
+                f"{result['e']:.4f}",
+                f"{result['beta']:+.4f}",
+                f"{result['energy_drift']:+.1e}",
+            ]
+        ]
         print(" ".join(whole[0]), flush=True)
-        body += ("\n\n## The whole impact\n\nThe same scene to the end of the impact "
-                 "(the study's predictive stop rule).\n\n"
-                 + markdown_table(["ranks", "steps", "t end, R/c", "wall min", "e", "beta",
-                                   "energy drift"], whole))
+        body += (
+            "\n\n## The whole impact\n\nThe same scene to the end of the impact "
+            "(the study's predictive stop rule).\n\n"
+            + markdown_table(
+                ["ranks", "steps", "t end, R/c", "wall min", "e", "beta", "energy drift"], whole
+            )
+        )
 
     if not args.no_decay_table:
         decay_rows = []
@@ -119,16 +170,25 @@ def main() -> None:
             for step in (dt, dt / 4) if a == 300.0 else (dt, dt / 2):
                 deck = {"contact_a": repr(a), "contact_V0": repr(a / 2.0)}
                 out = run(scene, f"large_{args.n_disk}_a{a:g}_dt{step:g}", step, 1, args.time, deck)
-                decay_rows.append([f"{a:.0f}", f"{a * cutoff:.1f}", f"{step:.1e}",
-                                   f"{out['change']:+.1e}"])
+                decay_rows.append(
+                    [f"{a:.0f}", f"{a * cutoff:.1f}", f"{step:.1e}", f"{out['change']:+.1e}"]
+                )
                 print(" ".join(decay_rows[-1]), flush=True)
-        body += ("\n\n## The contact's decay rate\n\nThe same scene on 1 rank, V0 = a m c^2 R / 2 "
-                 "for each a.\n\n"
-                 + markdown_table(["a R", "decay lengths within the cutoff", "dt",
-                                   "total energy change"], decay_rows))
-    flags = (" --no-decay-table" if args.no_decay_table else "") + (" --whole" if args.whole else "")
-    command = (f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --ranks "
-               + " ".join(map(str, args.ranks)) + flags)
+        body += (
+            "\n\n## The contact's decay rate\n\nThe same scene on 1 rank, V0 = a m c^2 R / 2 "
+            "for each a.\n\n"
+            + markdown_table(
+                ["a R", "decay lengths within the cutoff", "dt", "total energy change"], decay_rows
+            )
+        )
+    flags = (" --no-decay-table" if args.no_decay_table else "") + (
+        " --whole" if args.whole else ""
+    )
+    command = (
+        f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --ranks "
+        + " ".join(map(str, args.ranks))
+        + flags
+    )
     print(body)
     print(write_report("large_disk", "A large-resolution disk on several ranks", command, body))
 

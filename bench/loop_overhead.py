@@ -42,10 +42,11 @@ SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
 def breakdown(log: Path) -> dict[str, float]:
     """Seconds per section of LAMMPS's timer, summed over every run of a log."""
     total = dict.fromkeys(SECTIONS, 0.0)
-    for match in re.finditer(r"^(\w+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)", log.read_text(),
-                             re.MULTILINE):
+    for match in re.finditer(
+        r"^(\w+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)", log.read_text(), re.MULTILINE
+    ):
         if match.group(1) in total:
-            total[match.group(1)] += float(match.group(3))       # the average over ranks
+            total[match.group(1)] += float(match.group(3))  # the average over ranks
     return total
 
 
@@ -76,17 +77,28 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
     """Each variant's deck and variables."""
     options = PRESETS["paper"].options
     common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
-    bench = {"scene": str(folder), "steps": str(steps), "dt": repr(options.dt),
-             "springs": options.springs}
+    bench = {
+        "scene": str(folder),
+        "steps": str(steps),
+        "dt": repr(options.dt),
+        "springs": options.springs,
+    }
     return {
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
         "(c) impact deck, as the study": (IMPACT_DECK, common),
-        f"(d) series every {5 * options.every}, not {options.every}":
-            (IMPACT_DECK, {**common, "every": str(5 * options.every),
-                           "check": str(max(options.check, 5 * options.every))}),
-        f"(d) checks every {options.check // 2}, not {options.check}":
-            (IMPACT_DECK, {**common, "check": str(options.check // 2)}),
+        f"(d) series every {5 * options.every}, not {options.every}": (
+            IMPACT_DECK,
+            {
+                **common,
+                "every": str(5 * options.every),
+                "check": str(max(options.check, 5 * options.every)),
+            },
+        ),
+        f"(d) checks every {options.check // 2}, not {options.check}": (
+            IMPACT_DECK,
+            {**common, "check": str(options.check // 2)},
+        ),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
     }
@@ -112,7 +124,8 @@ def main() -> None:
                 wall = run_deck(deck, variables, log)
                 loop, done = loop_seconds(log)
                 runs.setdefault(name, []).append(
-                    {"wall": wall, "loop": loop, "steps": done, **breakdown(log)})
+                    {"wall": wall, "loop": loop, "steps": done, **breakdown(log)}
+                )
                 print(f"repeat {repeat + 1} {name}: {done / wall:,.0f} steps/s", flush=True)
 
     base = median(r["steps"] / r["wall"] for r in runs["(b) springs + contact"])
@@ -121,20 +134,39 @@ def main() -> None:
         rate = median(r["steps"] / r["wall"] for r in results)
         loop_rate = median(r["steps"] / r["loop"] for r in results)
         shares = {s: median(r[s] / r["loop"] for r in results) for s in SECTIONS}
-        rows.append([name, str(results[0]["steps"]), f"{rate:,.0f}", f"{rate / base:.2f}", f"{loop_rate:,.0f}",
-                     *(f"{100 * shares[s]:.0f}" for s in SECTIONS)])
+        rows.append(
+            [
+                name,
+                str(results[0]["steps"]),
+                f"{rate:,.0f}",
+                f"{rate / base:.2f}",
+                f"{loop_rate:,.0f}",
+                *(f"{100 * shares[s]:.0f}" for s in SECTIONS),
+            ]
+        )
     info = scene.info
-    body = (f"Scene: random disk, seed {args.seed}, gamma {args.gamma:g} degrees, wall "
-            f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
-            f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
-            f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
-            f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each. "
-            "**steps/s** over the whole input (read_data, set-up, loop, the work between "
-            "chunks); **vs (b)**: its ratio to (b) in this run; **loop steps/s**: inside "
-            "LAMMPS's run loops only; then LAMMPS's timer breakdown in percent of the loop "
-            "(summed over the chunks of the impact deck).\n\n"
-            + markdown_table(["variant", "steps", "steps/s", "vs (b)", "loop steps/s",
-                              *(f"{s} %" for s in SECTIONS)], rows))
+    body = (
+        f"Scene: random disk, seed {args.seed}, gamma {args.gamma:g} degrees, wall "
+        f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
+        f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
+        f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
+        f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each. "
+        "**steps/s** over the whole input (read_data, set-up, loop, the work between "
+        "chunks); **vs (b)**: its ratio to (b) in this run; **loop steps/s**: inside "
+        "LAMMPS's run loops only; then LAMMPS's timer breakdown in percent of the loop "
+        "(summed over the chunks of the impact deck).\n\n"
+        + markdown_table(
+            [
+                "variant",
+                "steps",
+                "steps/s",
+                "vs (b)",
+                "loop steps/s",
+                *(f"{s} %" for s in SECTIONS),
+            ],
+            rows,
+        )
+    )
     print(body)
     command = f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
     print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")

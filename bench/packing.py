@@ -34,19 +34,44 @@ SECTIONS = ("Bond", "Neigh", "Modify")
 
 def start(scene: Path, copies: int, ranks: int, steps: int, log: Path) -> subprocess.Popen:
     command = mpi_launcher(ranks) + [
-        "lmp", "-in", "bench/contact_cost.lmp", "-var", "scene", str(scene),
-        "-var", "contact", "none", "-var", "steps", str(steps), "-var", "copies", str(copies),
-        "-log", str(log), "-screen", "none", "-nocite"]
-    return subprocess.Popen(command, cwd=ROOT, env=mpi_environment(),
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        "lmp",
+        "-in",
+        "bench/contact_cost.lmp",
+        "-var",
+        "scene",
+        str(scene),
+        "-var",
+        "contact",
+        "none",
+        "-var",
+        "steps",
+        str(steps),
+        "-var",
+        "copies",
+        str(copies),
+        "-log",
+        str(log),
+        "-screen",
+        "none",
+        "-nocite",
+    ]
+    return subprocess.Popen(
+        command,
+        cwd=ROOT,
+        env=mpi_environment(),
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def loop_time(log: Path) -> dict[str, float]:
     text = log.read_text()
     out = {"loop": float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1))}
     for name in SECTIONS:
-        out[name] = float(re.search(rf"^{name}\s*\|\s*[\d.eE+-]+\s*\|\s*([\d.eE+-]+)",
-                                    text, re.M).group(1))
+        out[name] = float(
+            re.search(rf"^{name}\s*\|\s*[\d.eE+-]+\s*\|\s*([\d.eE+-]+)", text, re.M).group(1)
+        )
     return out
 
 
@@ -71,9 +96,14 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=3000)
     args = parser.parse_args()
 
-    ways = [("1 scene, 1 rank", 1, 1, 1), ("2 runs at once, 1 rank each", 1, 1, 2),
-            ("2 scenes packed, 1 rank", 2, 1, 1), ("8 scenes packed, 1 rank", 8, 1, 1),
-            ("2 scenes packed, 2 ranks", 2, 2, 1), ("8 scenes packed, 2 ranks", 8, 2, 1)]
+    ways = [
+        ("1 scene, 1 rank", 1, 1, 1),
+        ("2 runs at once, 1 rank each", 1, 1, 2),
+        ("2 scenes packed, 1 rank", 2, 1, 1),
+        ("8 scenes packed, 1 rank", 8, 1, 1),
+        ("2 scenes packed, 2 ranks", 2, 2, 1),
+        ("8 scenes packed, 2 ranks", 8, 2, 1),
+    ]
     scene = build_scene(SceneSpec(gamma_deg=45.0))
     samples: dict[str, list[dict]] = {way[0]: [] for way in ways}
     with tempfile.TemporaryDirectory() as tmp:
@@ -88,12 +118,26 @@ def main() -> None:
     for way in ways:
         runs = samples[way[0]]
         rate = median([s["rate"] for s in runs])
-        rows.append([way[0], str(way[1] * way[3]), f"{rate:,.0f}", f"{rate / base:.2f}"]
-                    + [f"{median([s[name] for s in runs]) * 100:.0f}" for name in SECTIONS])
-    body = (f"Default scene ({scene.info['n_atoms']} atoms, {scene.info['n_springs']} springs), "
-            f"{args.steps} steps without contact, medians of {args.repeats} interleaved repeats.\n\n"
-            + markdown_table(["way", "scenes", "scene-steps/s", "vs 1 scene",
-                              "Bond % of loop", "Neigh %", "Modify (nve) %"], rows))
+        rows.append(
+            [way[0], str(way[1] * way[3]), f"{rate:,.0f}", f"{rate / base:.2f}"]
+            + [f"{median([s[name] for s in runs]) * 100:.0f}" for name in SECTIONS]
+        )
+    body = (
+        f"Default scene ({scene.info['n_atoms']} atoms, {scene.info['n_springs']} springs), "
+        f"{args.steps} steps without contact, medians of {args.repeats} interleaved repeats.\n\n"
+        + markdown_table(
+            [
+                "way",
+                "scenes",
+                "scene-steps/s",
+                "vs 1 scene",
+                "Bond % of loop",
+                "Neigh %",
+                "Modify (nve) %",
+            ],
+            rows,
+        )
+    )
     print(body)
     command = f"python bench/packing.py --repeats {args.repeats} --steps {args.steps}"
     print(f"wrote {write_report('packing', 'Packing scenes into one run', command, body)}")

@@ -37,8 +37,14 @@ from runner.study import LATTICES
 
 DELTA = 0.03
 DISK_POINTS = 800
-WALL_READINGS = [(800, "sides"), (800, "sides+bottom"), (1600, "sides"), (1600, "sides+bottom"),
-                 (None, "sides"), (None, "sides+bottom")]
+WALL_READINGS = [
+    (800, "sides"),
+    (800, "sides+bottom"),
+    (1600, "sides"),
+    (1600, "sides+bottom"),
+    (None, "sides"),
+    (None, "sides+bottom"),
+]
 WIDTH, HEIGHT = 8.0, 2.0
 
 
@@ -54,22 +60,39 @@ def displacements(body: bodies.Body, kind: str) -> np.ndarray:
     row = body.points[body.surface]
     if kind == "disk":
         return np.linalg.norm(row, axis=1) - 1.0
-    return row[1:-1, 1]                      # the wall's top corners are not displaced
+    return row[1:-1, 1]  # the wall's top corners are not displaced
 
 
 def segment_steps(body: bodies.Body, kind: str) -> list[float]:
     """Normal step between the ends of each segment that needed the fix, in units of sqrt(2) delta."""
-    heights = (np.linalg.norm(body.points, axis=1) - 1.0 if kind == "disk" else body.points[:, 1])
+    heights = np.linalg.norm(body.points, axis=1) - 1.0 if kind == "disk" else body.points[:, 1]
     return [abs(heights[a] - heights[b]) / (np.sqrt(2.0) * DELTA) for a, b in body.steep]
 
 
 def survey(seeds: range) -> list[dict]:
     """One record per body kind and reading, accumulated over the seeds."""
     cases = [("disk", name, kw) for name, kw in LATTICES.items()]
-    cases += [("wall", f"{wall_points(n)} points ({'dens.' if n is None else n}), {fixed}",
-               {"n": wall_points(n), "fixed": fixed}) for n, fixed in WALL_READINGS]
-    records = [{"kind": kind, "reading": label, "kw": kw, "built": 0, "failed": [], "fixed": [],
-                "steps": [], "u": []} for kind, label, kw in cases]
+    cases += [
+        (
+            "wall",
+            f"{wall_points(n)} points ({'dens.' if n is None else n}), {fixed}",
+            {"n": wall_points(n), "fixed": fixed},
+        )
+        for n, fixed in WALL_READINGS
+    ]
+    records = [
+        {
+            "kind": kind,
+            "reading": label,
+            "kw": kw,
+            "built": 0,
+            "failed": [],
+            "fixed": [],
+            "steps": [],
+            "u": [],
+        }
+        for kind, label, kw in cases
+    ]
     for seed in seeds:
         for record in records:
             kw = record["kw"]
@@ -80,8 +103,9 @@ def survey(seeds: range) -> list[dict]:
             rng = np.random.default_rng(disk_seed if record["kind"] == "disk" else wall_seed)
             try:
                 if record["kind"] == "disk":
-                    body = bodies.make_disk(rng, kw["lattice"], DISK_POINTS, DELTA,
-                                            kw.get("k2_over_k1", 3.0 / 7.0))
+                    body = bodies.make_disk(
+                        rng, kw["lattice"], DISK_POINTS, DELTA, kw.get("k2_over_k1", 3.0 / 7.0)
+                    )
                 else:
                     body = bodies.make_wall(rng, kw["n"], WIDTH, HEIGHT, DELTA, kw["fixed"])
             except BuildError:
@@ -96,8 +120,17 @@ def survey(seeds: range) -> list[dict]:
 
 
 def table(records: list[dict]) -> str:
-    header = ["body", "reading", "built", "needed the fix (seeds)", "N displacements",
-              "std / delta", "(std - delta) / SE", "max abs / delta", "step across the fixed segments / (sqrt2 delta)"]
+    header = [
+        "body",
+        "reading",
+        "built",
+        "needed the fix (seeds)",
+        "N displacements",
+        "std / delta",
+        "(std - delta) / SE",
+        "max abs / delta",
+        "step across the fixed segments / (sqrt2 delta)",
+    ]
     rows = []
     for r in records:
         u = np.concatenate(r["u"])
@@ -105,34 +138,53 @@ def table(records: list[dict]) -> str:
         se = DELTA / np.sqrt(2.0 * len(u))
         fixed = f"{len(r['fixed'])} ({', '.join(map(str, r['fixed']))})" if r["fixed"] else "0"
         steps = ", ".join(f"{s:.2f}" for s in r["steps"]) or "-"
-        rows.append([r["kind"], r["reading"], f"{r['built']}", fixed, f"{len(u)}",
-                     f"{std / DELTA:.4f}", f"{(std - DELTA) / se:+.2f}",
-                     f"{np.abs(u).max() / DELTA:.2f}", steps])
+        rows.append(
+            [
+                r["kind"],
+                r["reading"],
+                f"{r['built']}",
+                fixed,
+                f"{len(u)}",
+                f"{std / DELTA:.4f}",
+                f"{(std - DELTA) / se:+.2f}",
+                f"{np.abs(u).max() / DELTA:.2f}",
+                steps,
+            ]
+        )
     return markdown_table(header, rows)
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--seeds", type=int, default=100, help="number of seeds (default 100)")
     parser.add_argument("--first-seed", type=int, default=1, help="first seed (default 1)")
-    parser.add_argument("--write", action="store_true",
-                        help="write the table to docs/benchmarks/roughness.md")
+    parser.add_argument(
+        "--write", action="store_true", help="write the table to docs/benchmarks/roughness.md"
+    )
     args = parser.parse_args()
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     start = time.time()
     records = survey(seeds)
     failed = sum(len(r["failed"]) for r in records)
-    body = (f"Seeds {seeds.start} to {seeds.stop - 1}; delta = {DELTA} R; disks of {DISK_POINTS} "
-            f"points, walls {WIDTH:g} R x {HEIGHT:g} R. Bodies that failed to build: {failed}. "
-            f"std is pooled over all seeds' displacements, SE = delta / sqrt(2 N).\n\n"
-            + table(records))
+    body = (
+        f"Seeds {seeds.start} to {seeds.stop - 1}; delta = {DELTA} R; disks of {DISK_POINTS} "
+        f"points, walls {WIDTH:g} R x {HEIGHT:g} R. Bodies that failed to build: {failed}. "
+        f"std is pooled over all seeds' displacements, SE = delta / sqrt(2 N).\n\n" + table(records)
+    )
     print(body)
     print(f"\n({time.time() - start:.0f} s)")
     if args.write:
-        command = "python bench/roughness.py" + (f" --seeds {args.seeds}" if args.seeds != 100 else "") \
-            + (f" --first-seed {args.first_seed}" if args.first_seed != 1 else "") + " --write"
-        path = write_report("roughness", "Surface roughness and the steep-segment fix", command, body)
+        command = (
+            "python bench/roughness.py"
+            + (f" --seeds {args.seeds}" if args.seeds != 100 else "")
+            + (f" --first-seed {args.first_seed}" if args.first_seed != 1 else "")
+            + " --write"
+        )
+        path = write_report(
+            "roughness", "Surface roughness and the steep-segment fix", command, body
+        )
         print(f"wrote {path}")
 
 

@@ -43,8 +43,13 @@ def run(folder: Path, changes: dict[str, str]) -> dict:
         changes["skin"] = repr(float(skin_factor) * spacing)
     result = run_scene(folder, DEFAULT, changes)
     loop, steps = loop_seconds(folder / "log.lammps")
-    return {"seconds": result["wall_seconds"], "loop": loop, "steps": steps, "e": result["e"],
-            "beta": result["beta"]}
+    return {
+        "seconds": result["wall_seconds"],
+        "loop": loop,
+        "steps": steps,
+        "e": result["e"],
+        "beta": result["beta"],
+    }
 
 
 def main() -> None:
@@ -62,14 +67,26 @@ def main() -> None:
     rows = []
     for name, runs in times.items():
         seconds = median([t["seconds"] for t in runs])
-        rows.append([name, f"{runs[0]['steps']}", f"{seconds:.2f}", f"{(seconds / base - 1) * 100:+.0f}",
-                     f"{runs[0]['e']:.5f}", f"{runs[0]['beta']:+.5f}"])
+        rows.append(
+            [
+                name,
+                f"{runs[0]['steps']}",
+                f"{seconds:.2f}",
+                f"{(seconds / base - 1) * 100:+.0f}",
+                f"{runs[0]['e']:.5f}",
+                f"{runs[0]['beta']:+.5f}",
+            ]
+        )
         print(" | ".join(rows[-1]), flush=True)
-    body = (f"Default scene (random lattice, 45 degrees, dt = {DEFAULT.dt:g}), medians of "
-            f"{args.repeats} interleaved runs.\n\n"
-            + markdown_table(["setting", "steps", "s per impact", "% vs defaults", "e", "beta"], rows))
+    body = (
+        f"Default scene (random lattice, 45 degrees, dt = {DEFAULT.dt:g}), medians of "
+        f"{args.repeats} interleaved runs.\n\n"
+        + markdown_table(["setting", "steps", "s per impact", "% vs defaults", "e", "beta"], rows)
+    )
     print(body)
-    print(f"wrote {write_report('run_settings', 'Run settings', 'python bench/run_settings.py', body)}")
+    print(
+        f"wrote {write_report('run_settings', 'Run settings', 'python bench/run_settings.py', body)}"
+    )
 
 
 if __name__ == "__main__":

@@ -56,10 +56,28 @@ E_PAPER, E_NEAR = 0.8, 0.1
 BETA0_PAPER, BETA0_NEAR = 0.56, 0.2
 ENDS_NEAR = 0.1
 BANDS = ((">= 2", 2.0, np.inf), ("0.5-2", 0.5, 2.0), ("< 0.5", 0.0, 0.5))
-KEEP_COLUMNS = ("reading", "study_lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta", "omega",
-                "vibration_disk", "vibration_wall",
-                "contact_time", "touches", "side_clearance", "energy_drift", "steps",
-                "wall_seconds", "n_wall_points", "disk_inertia_ratio", "nu", "error")
+KEEP_COLUMNS = (
+    "reading",
+    "study_lattice",
+    "seed",
+    "gamma_deg",
+    "cot_gamma",
+    "e",
+    "beta",
+    "omega",
+    "vibration_disk",
+    "vibration_wall",
+    "contact_time",
+    "touches",
+    "side_clearance",
+    "energy_drift",
+    "steps",
+    "wall_seconds",
+    "n_wall_points",
+    "disk_inertia_ratio",
+    "nu",
+    "error",
+)
 
 
 @dataclass
@@ -88,14 +106,23 @@ def cause(message: str) -> str:
     """A failure's cause without its numbers (atom, step, time)."""
     text = re.sub(r"ERROR( on proc \d+)?: ", "", message)
     text = re.sub(r"\b\d[\d.eE+-]*", "#", text)
-    return text.split(":")[0][:70] if "inside the wall" not in text else "a disk point inside the wall"
+    return (
+        text.split(":")[0][:70] if "inside the wall" not in text else "a disk point inside the wall"
+    )
 
 
 def study_for(reading: tuple, lattice: str, args) -> ReadingStudy:
     n_wall, wall_ka, wall_fixed = reading
     name = label(*reading) + ("" if lattice == "random" else f"_{lattice}")
-    return ReadingStudy(name, lattices=(lattice,), angles=args.angles, samples=args.samples,
-                        n_wall=n_wall, wall_ka=wall_ka, wall_fixed=wall_fixed)
+    return ReadingStudy(
+        name,
+        lattices=(lattice,),
+        angles=args.angles,
+        samples=args.samples,
+        n_wall=n_wall,
+        wall_ka=wall_ka,
+        wall_fixed=wall_fixed,
+    )
 
 
 def run_rows(study: ReadingStudy, reading: tuple) -> list[dict]:
@@ -106,8 +133,14 @@ def run_rows(study: ReadingStudy, reading: tuple) -> list[dict]:
         failed = Path(job["folder"]) / "failed.json"
         if failed.exists():
             error = json.loads(failed.read_text())["error"]
-            rows.append({"study_lattice": job["lattice"], "seed": job["seed"],
-                         "gamma_deg": job["gamma"], "error": cause(error)})
+            rows.append(
+                {
+                    "study_lattice": job["lattice"],
+                    "seed": job["seed"],
+                    "gamma_deg": job["gamma"],
+                    "error": cause(error),
+                }
+            )
     for row in rows:
         row["reading"] = label(*reading)
     return rows
@@ -150,7 +183,7 @@ def summarise(rows: list[dict]) -> dict:
     means = mean_rows(done)
     deviation = np.array([m["e"] - E_PAPER for m in means])
     e_se = np.array([m["e_se"] for m in means])
-    out["e_miss"] = float(np.sqrt(np.mean(deviation ** 2)))
+    out["e_miss"] = float(np.sqrt(np.mean(deviation**2)))
     # first-order propagation of the standard errors of the means per angle
     e_miss_se = float(np.sqrt(np.sum((deviation * e_se) ** 2)) / (len(means) * out["e_miss"]))
     out["beta0_miss"] = abs(out["walton"]["beta0"] - BETA0_PAPER) if "walton" in out else np.inf
@@ -160,8 +193,11 @@ def summarise(rows: list[dict]) -> dict:
     misses = (out["e_miss"] / E_NEAR, out["beta0_miss"] / BETA0_NEAR, share / ENDS_NEAR)
     out["facts_met"] = sum(m <= 1.0 for m in misses)
     out["total_miss"] = float(sum(misses))
-    out["total_miss_se"] = float(np.sqrt((e_miss_se / E_NEAR) ** 2 + (beta0_sd / BETA0_NEAR) ** 2
-                                         + (share_se / ENDS_NEAR) ** 2))
+    out["total_miss_se"] = float(
+        np.sqrt(
+            (e_miss_se / E_NEAR) ** 2 + (beta0_sd / BETA0_NEAR) ** 2 + (share_se / ENDS_NEAR) ** 2
+        )
+    )
     return out
 
 
@@ -172,19 +208,24 @@ def rank(summaries: dict) -> list[tuple]:
     the paper's text agrees as well: within one standard error (combined) of
     the least. The rest follow by total miss.
     """
-    scored = sorted((r for r in summaries if np.isfinite(summaries[r].get("total_miss", np.inf))),
-                    key=lambda r: summaries[r]["total_miss"])
+    scored = sorted(
+        (r for r in summaries if np.isfinite(summaries[r].get("total_miss", np.inf))),
+        key=lambda r: summaries[r]["total_miss"],
+    )
     if not scored:
         return []
     least = summaries[scored[0]]
 
     def as_good(r):
         s = summaries[r]
-        return s["total_miss"] - least["total_miss"] <= np.hypot(s["total_miss_se"],
-                                                                 least["total_miss_se"])
+        return s["total_miss"] - least["total_miss"] <= np.hypot(
+            s["total_miss_se"], least["total_miss_se"]
+        )
 
-    best = min((r for r in scored if as_good(r)),
-               key=lambda r: (distance_from_text(r), summaries[r]["total_miss"]))
+    best = min(
+        (r for r in scored if as_good(r)),
+        key=lambda r: (distance_from_text(r), summaries[r]["total_miss"]),
+    )
     return [best] + [r for r in scored if r != best]
 
 
@@ -197,20 +238,34 @@ def table_row(reading: tuple, lattice: str, s: dict) -> list[str]:
     walton = s.get("walton")
     causes = "; ".join(f"{n} {c}" for c, n in sorted(s["causes"].items())) or "-"
     if "total_miss" not in s:
-        return [label(*reading), lattice, str(s["impacts"]), str(s["failed"])] + ["-"] * 13 + [causes]
-    return [label(*reading), lattice, str(s["impacts"]), str(s["failed"]),
-            *(fmt(s[f"e {name}"]) for name, _, _ in BANDS),
-            f"{walton['mu']:.3f} +- {walton['mu_sd']:.3f}" if walton else "-",
-            f"{walton['beta0']:.3f} +- {walton['beta0_sd']:.3f}" if walton else "-",
-            f"{walton['chi2']:.1f}" if walton else "-",
-            f"{s['contact_time']:.1f}", f"{s['touches']:g}", f"{100 * s['ends_share']:.0f} %",
-            f"{s['seconds']:.2f}", f"{s['steps']:.0f}",
-            f"{s['e_miss']:.3f}", f"{s['beta0_miss']:.3f}", f"{s['facts_met']}",
-            f"{s['total_miss']:.2f} +- {s['total_miss_se']:.2f}", causes]
+        return (
+            [label(*reading), lattice, str(s["impacts"]), str(s["failed"])] + ["-"] * 13 + [causes]
+        )
+    return [
+        label(*reading),
+        lattice,
+        str(s["impacts"]),
+        str(s["failed"]),
+        *(fmt(s[f"e {name}"]) for name, _, _ in BANDS),
+        f"{walton['mu']:.3f} +- {walton['mu_sd']:.3f}" if walton else "-",
+        f"{walton['beta0']:.3f} +- {walton['beta0_sd']:.3f}" if walton else "-",
+        f"{walton['chi2']:.1f}" if walton else "-",
+        f"{s['contact_time']:.1f}",
+        f"{s['touches']:g}",
+        f"{100 * s['ends_share']:.0f} %",
+        f"{s['seconds']:.2f}",
+        f"{s['steps']:.0f}",
+        f"{s['e_miss']:.3f}",
+        f"{s['beta0_miss']:.3f}",
+        f"{s['facts_met']}",
+        f"{s['total_miss']:.2f} +- {s['total_miss_se']:.2f}",
+        causes,
+    ]
 
 
 def draw(rows: list[dict], path: Path) -> None:
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -220,17 +275,27 @@ def draw(rows: list[dict], path: Path) -> None:
     for i, n_wall in enumerate(N_WALL):
         for wall_ka, wall_fixed in itertools.product(WALL_KA, WALL_FIXED):
             name = label(n_wall, wall_ka, wall_fixed)
-            done = [r for r in rows if r["reading"] == name and r["study_lattice"] == "random"
-                    and not r.get("error")]
+            done = [
+                r
+                for r in rows
+                if r["reading"] == name and r["study_lattice"] == "random" and not r.get("error")
+            ]
             if not done:
                 continue
             means = mean_rows(done)
             psi = [m["cot_gamma"] for m in means]
             for ax, key in zip(axes[i], ("e", "beta")):
-                ax.errorbar(psi, [m[key] for m in means], [m[f"{key}_se"] for m in means],
-                            color=colours[wall_ka], ls=styles[wall_fixed], marker="o", ms=3,
-                            label=f"ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}x'}, "
-                                  f"{wall_fixed} held")
+                ax.errorbar(
+                    psi,
+                    [m[key] for m in means],
+                    [m[f"{key}_se"] for m in means],
+                    color=colours[wall_ka],
+                    ls=styles[wall_fixed],
+                    marker="o",
+                    ms=3,
+                    label=f"ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}x'}, "
+                    f"{wall_fixed} held",
+                )
         axes[i][0].axhline(E_PAPER, color="grey", lw=0.8)
         axes[i][1].axhline(BETA0_PAPER, color="grey", lw=0.8)
         axes[i][0].set_ylabel(f"e, wall of {n_wall}" + (" points" if n_wall != "density" else ""))
@@ -239,7 +304,9 @@ def draw(rows: list[dict], path: Path) -> None:
         ax.set_xscale("log")
         ax.set_xlabel("cot gamma")
     axes[0][1].legend(fontsize=7)
-    fig.suptitle("Random disk on every reading of the wall (grey: the paper's e = 0.8, beta0 = 0.56)")
+    fig.suptitle(
+        "Random disk on every reading of the wall (grey: the paper's e = 0.8, beta0 = 0.56)"
+    )
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -253,25 +320,46 @@ def read_rows_csv(path: Path) -> list[dict]:
 def page(rows: list[dict], args) -> str:
     summaries: dict[tuple, dict] = {}
     for reading in readings():
-        summaries[reading] = summarise([r for r in rows if r["reading"] == label(*reading)
-                                        and r["study_lattice"] == "random"])
+        summaries[reading] = summarise(
+            [r for r in rows if r["reading"] == label(*reading) and r["study_lattice"] == "random"]
+        )
     ranking = rank(summaries)
-    header = ["reading (points_ka_held)", "disk", "impacts", "failed",
-              *(f"e, cot gamma {name}" for name, _, _ in BANDS), "Walton mu", "Walton beta0",
-              "chi2/dof", "median contact, R/c", "median touches", "near a side",
-              "LAMMPS s", "steps", "e miss", "beta0 miss", "facts met", "total miss",
-              "failures by cause"]
+    header = [
+        "reading (points_ka_held)",
+        "disk",
+        "impacts",
+        "failed",
+        *(f"e, cot gamma {name}" for name, _, _ in BANDS),
+        "Walton mu",
+        "Walton beta0",
+        "chi2/dof",
+        "median contact, R/c",
+        "median touches",
+        "near a side",
+        "LAMMPS s",
+        "steps",
+        "e miss",
+        "beta0 miss",
+        "facts met",
+        "total miss",
+        "failures by cause",
+    ]
     table = [table_row(r, "random", summaries[r]) for r in readings()]
     triangular = []
     for reading in ranking[:3]:
-        tri = [r for r in rows if r["reading"] == label(*reading)
-               and r["study_lattice"] == "triangular"]
+        tri = [
+            r
+            for r in rows
+            if r["reading"] == label(*reading) and r["study_lattice"] == "triangular"
+        ]
         if tri:
             triangular.append(table_row(reading, "triangular", summarise(tri)))
-    order = "\n".join(f"{i + 1}. `{label(*r)}`: total miss {summaries[r]['total_miss']:.2f} +- "
-                      f"{summaries[r]['total_miss_se']:.2f}, {summaries[r]['facts_met']} facts met, "
-                      f"{distance_from_text(r)} choice(s) away from the paper's text"
-                      for i, r in enumerate(ranking))
+    order = "\n".join(
+        f"{i + 1}. `{label(*r)}`: total miss {summaries[r]['total_miss']:.2f} +- "
+        f"{summaries[r]['total_miss_se']:.2f}, {summaries[r]['facts_met']} facts met, "
+        f"{distance_from_text(r)} choice(s) away from the paper's text"
+        for i, r in enumerate(ranking)
+    )
     return (
         f"Random disk (800 points), {args.angles} angles from 5.7 to 80.5 degrees x {args.samples} "
         "samples (seeds 1 on) per reading, v_n = 0.1 c, the study's run settings; then the "
@@ -293,10 +381,12 @@ def page(rows: list[dict], args) -> str:
         "total miss within one combined standard error of the least), the one with the fewest "
         "choices away from the paper's text (800 points, one ka, the sides held).\n\n"
         + markdown_table(header, table + triangular)
-        + "\n\nRanking of the random-disk readings:\n\n" + order
+        + "\n\nRanking of the random-disk readings:\n\n"
+        + order
         + "\n\n![e and beta against cot gamma per reading](scene_readings.png)\n\n"
         "One row per impact: `scene_readings.csv` (`python bench/scene_readings.py --from-csv` "
-        "rebuilds this page and the figure from it).\n")
+        "rebuilds this page and the figure from it).\n"
+    )
 
 
 def main() -> None:
@@ -304,10 +394,17 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=6, help="samples per angle (default: 6)")
     parser.add_argument("--angles", type=int, default=8, help="angles (default: 8)")
     parser.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
-    parser.add_argument("--from-csv", action="store_true",
-                        help=f"only rebuild the page and figure from {ROWS_CSV.name}")
-    parser.add_argument("--docs", type=Path, default=ROWS_CSV.parent,
-                        help="where the page and the figure go (default: docs/benchmarks)")
+    parser.add_argument(
+        "--from-csv",
+        action="store_true",
+        help=f"only rebuild the page and figure from {ROWS_CSV.name}",
+    )
+    parser.add_argument(
+        "--docs",
+        type=Path,
+        default=ROWS_CSV.parent,
+        help="where the page and the figure go (default: docs/benchmarks)",
+    )
     args = parser.parse_args()
 
     if args.from_csv:
@@ -321,7 +418,9 @@ def main() -> None:
             study = study_for(reading, "random", args)
             run_study(study, args.workers)
             rows += run_rows(study, reading)
-        summaries = {r: summarise([x for x in rows if x["reading"] == label(*r)]) for r in readings()}
+        summaries = {
+            r: summarise([x for x in rows if x["reading"] == label(*r)]) for r in readings()
+        }
         for reading in rank(summaries)[:3]:
             study = study_for(reading, "triangular", args)
             run_study(study, args.workers)

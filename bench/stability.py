@@ -30,8 +30,14 @@ from runner.lammps_run import LammpsError
 from runner.options import RunOptions
 
 STEPS = (2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2, 2.4e-2, 3.2e-2)
-CASES = [("random", 80.5, 0.1), ("square", 80.5, 0.1), ("random", 45.0, 0.1),
-         ("random", 45.0, 0.2), ("random", 45.0, 0.3), ("random", 45.0, 0.5)]
+CASES = [
+    ("random", 80.5, 0.1),
+    ("square", 80.5, 0.1),
+    ("random", 45.0, 0.1),
+    ("random", 45.0, 0.2),
+    ("random", 45.0, 0.3),
+    ("random", 45.0, 0.5),
+]
 
 
 def spec_for(lattice: str, gamma: float, vn: float) -> SceneSpec:
@@ -43,11 +49,15 @@ def sweep(tmp: Path) -> list[list[str]]:
     rows = []
     for lattice, gamma, vn in CASES:
         scene = build_scene(spec_for(lattice, gamma, vn))
-        for label, make in (("verlet", lambda dt: RunOptions(dt=dt)),
-                            ("respa 2", lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=2))):
+        for label, make in (
+            ("verlet", lambda dt: RunOptions(dt=dt)),
+            ("respa 2", lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=2)),
+        ):
             last_good, failure = None, None
             for dt in STEPS:
-                folder = write_scene(scene, tmp / f"{lattice}_{gamma}_{vn}_{label.replace(' ', '')}_{dt}")
+                folder = write_scene(
+                    scene, tmp / f"{lattice}_{gamma}_{vn}_{label.replace(' ', '')}_{dt}"
+                )
                 try:
                     result = run_scene(folder, make(dt))
                     last_good = (dt, result)
@@ -55,8 +65,14 @@ def sweep(tmp: Path) -> list[list[str]]:
                     failure = (dt, str(error))
                     assert not (folder / "result.json").exists()
                     break
-            good = (f"{last_good[0]:g} (energy error {abs(last_good[1]['energy_drift']):.0e}, "
-                    f"e = {last_good[1]['e']:.3f})") if last_good else "none"
+            good = (
+                (
+                    f"{last_good[0]:g} (energy error {abs(last_good[1]['energy_drift']):.0e}, "
+                    f"e = {last_good[1]['e']:.3f})"
+                )
+                if last_good
+                else "none"
+            )
             fail = f"{failure[0]:g}: {failure[1][:90]}" if failure else f"none up to {STEPS[-1]:g}"
             rows.append([f"{lattice} {gamma:g} deg {vn:g} c", label, good, fail])
             print(" | ".join(rows[-1]), flush=True)
@@ -69,9 +85,9 @@ def spring_strain(folder: Path) -> float:
     lines = (folder / "dump.lammpstrj").read_text().splitlines()
     start = max(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
     n = len(system.x)
-    frame = np.array([line.split() for line in lines[start + 1:start + 1 + n]], float)
+    frame = np.array([line.split() for line in lines[start + 1 : start + 1 + n]], float)
     x = np.empty((n, 2))
-    x[frame[:, 0].astype(int) - 1] = frame[:, 4:6]       # id mol type mass x y ...
+    x[frame[:, 0].astype(int) - 1] = frame[:, 4:6]  # id mol type mass x y ...
     disk = system.molecule[system.bonds[:, 0]] == 1
     d = x[system.bonds[disk, 1]] - x[system.bonds[disk, 0]]
     return float(np.max(np.abs(np.linalg.norm(d, axis=1) / system.r0[disk] - 1.0)))
@@ -80,11 +96,14 @@ def spring_strain(folder: Path) -> float:
 def long_run(tmp: Path, dt: float) -> list[str]:
     folder = write_scene(build_scene(SceneSpec(gamma_deg=80.5)), tmp / "long")
     # early_stop no: the deck runs on to tmax after the disk has left
-    run_scene(folder, RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=50),
-              {"early_stop": "no"})
+    run_scene(
+        folder, RunOptions(dt=dt, rule="gradient", tmax=400.0, dump_every=50), {"early_stop": "no"}
+    )
     energies = read_energies(folder / "energy.dat")
-    total = [sum(row[k] for k in ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact"))
-             for row in energies]
+    total = [
+        sum(row[k] for k in ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact"))
+        for row in energies
+    ]
     drift = (total[-1] - total[0]) / energies[0]["ke_disk"]
     return [f"{dt:g}", "400", f"{drift:+.1e}", f"{spring_strain(folder):.3f}"]
 
@@ -95,15 +114,27 @@ def main() -> None:
         tmp = Path(tmp)
         sweep_rows = sweep(tmp)
         long_rows = [long_run(tmp, dt) for dt in (RunOptions().dt,)]
-    body = ("## Time steps until failure\n\n"
-            + markdown_table(["scene", "integrator", "largest time step that ran", "first failure"],
-                             sweep_rows)
-            + "\n\n## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
-            "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
-            + markdown_table(["dt", "t end", "total energy change / initial kinetic energy",
-                              "largest strain of a disk spring at the end"], long_rows))
+    body = (
+        "## Time steps until failure\n\n"
+        + markdown_table(
+            ["scene", "integrator", "largest time step that ran", "first failure"], sweep_rows
+        )
+        + "\n\n## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
+        "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
+        + markdown_table(
+            [
+                "dt",
+                "t end",
+                "total energy change / initial kinetic energy",
+                "largest strain of a disk spring at the end",
+            ],
+            long_rows,
+        )
+    )
     print(body)
-    print(f"wrote {write_report('stability', 'Stability stress tests', 'python bench/stability.py', body)}")
+    print(
+        f"wrote {write_report('stability', 'Stability stress tests', 'python bench/stability.py', body)}"
+    )
 
 
 if __name__ == "__main__":

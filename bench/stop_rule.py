@@ -24,9 +24,12 @@ from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.options import RunOptions
 
-LATTICES = {"random": {}, "triangular": {},
-            "square nu=0.1": {"k2_over_k1": square_ratio_for_poisson(0.1)},
-            "square nu=0.3": {"k2_over_k1": square_ratio_for_poisson(0.3)}}
+LATTICES = {
+    "random": {},
+    "triangular": {},
+    "square nu=0.1": {"k2_over_k1": square_ratio_for_poisson(0.1)},
+    "square nu=0.3": {"k2_over_k1": square_ratio_for_poisson(0.3)},
+}
 ANGLES = (5.7, 26.6, 45.0, 63.4, 80.5)
 LONG = 100.0
 
@@ -39,7 +42,9 @@ def long_run(folder: Path) -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=3)
-    parser.add_argument("--slack", type=float, default=None, help="stop_slack, R (deck default: 0.1 cutoff)")
+    parser.add_argument(
+        "--slack", type=float, default=None, help="stop_slack, R (deck default: 0.1 cutoff)"
+    )
     parser.add_argument("--vibration", type=float, default=1.0, help="stop_vibration (0 or 1)")
     parser.add_argument("--name", default="stop_rule")
     args = parser.parse_args()
@@ -53,10 +58,13 @@ def main() -> None:
             steps, misses, worst = [], 0, 0.0
             for seed in range(1, args.seeds + 1):
                 for gamma in ANGLES:
-                    scene = build_scene(SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra))
+                    scene = build_scene(
+                        SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra)
+                    )
                     tag = f"{lattice}{extra.get('k2_over_k1', '')}_{seed}_{gamma}"
-                    stopped = run_scene(write_scene(scene, Path(tmp) / f"{tag}_p"), RunOptions(),
-                                        extra_vars)
+                    stopped = run_scene(
+                        write_scene(scene, Path(tmp) / f"{tag}_p"), RunOptions(), extra_vars
+                    )
                     folder = write_scene(scene, Path(tmp) / f"{tag}_long")
                     full = long_run(folder)
                     series = read_series(folder / "series.dat")
@@ -65,23 +73,47 @@ def main() -> None:
                         misses += 1
                         gap = max(abs(stopped[k] - full[k]) for k in ("e", "beta"))
                         worst = max(worst, gap)
-                        print(f"  missed re-contact: {name} seed {seed} gamma {gamma}: stopped at "
-                              f"{stopped['time_end']:.1f}, contact again at {series['time'][later][0]:.1f}, "
-                              f"e and beta change by {gap:.1e}", flush=True)
+                        print(
+                            f"  missed re-contact: {name} seed {seed} gamma {gamma}: stopped at "
+                            f"{stopped['time_end']:.1f}, contact again at {series['time'][later][0]:.1f}, "
+                            f"e and beta change by {gap:.1e}",
+                            flush=True,
+                        )
                     steps.append(stopped["steps"])
-            rows.append([name, str(len(steps)), f"{median(steps):.0f}", f"{LONG / RunOptions().dt:.0f}",
-                         str(misses), f"{worst:.1e}" if misses else "-"])
+            rows.append(
+                [
+                    name,
+                    str(len(steps)),
+                    f"{median(steps):.0f}",
+                    f"{LONG / RunOptions().dt:.0f}",
+                    str(misses),
+                    f"{worst:.1e}" if misses else "-",
+                ]
+            )
             print(" | ".join(rows[-1]), flush=True)
-    body = (f"Angles {', '.join(f'{a:g}' for a in ANGLES)} degrees, seeds 1 to {args.seeds}, "
-            f"default settings, stop_vibration {args.vibration:g}, stop_slack "
-            f"{'0.1 cutoff' if args.slack is None else args.slack}; the long runs go on to "
-            f"t = {LONG:g} R/c.\n\n"
-            + markdown_table(["lattice", "impacts", "median steps, predictive stop",
-                              f"steps to t = {LONG:g}", "contacts after the stop",
-                              "largest change of e or beta they make"], rows))
+    body = (
+        f"Angles {', '.join(f'{a:g}' for a in ANGLES)} degrees, seeds 1 to {args.seeds}, "
+        f"default settings, stop_vibration {args.vibration:g}, stop_slack "
+        f"{'0.1 cutoff' if args.slack is None else args.slack}; the long runs go on to "
+        f"t = {LONG:g} R/c.\n\n"
+        + markdown_table(
+            [
+                "lattice",
+                "impacts",
+                "median steps, predictive stop",
+                f"steps to t = {LONG:g}",
+                "contacts after the stop",
+                "largest change of e or beta they make",
+            ],
+            rows,
+        )
+    )
     print(body)
-    command = f"python bench/stop_rule.py --vibration {args.vibration:g}" + (
-        f" --slack {args.slack:g}" if args.slack is not None else "") + f" --name {args.name}"
+    command = (
+        f"python bench/stop_rule.py --vibration {args.vibration:g}"
+        + (f" --slack {args.slack:g}" if args.slack is not None else "")
+        + f" --name {args.name}"
+    )
     print(f"wrote {write_report(args.name, 'Stop rule', command, body)}")
 
 

@@ -21,19 +21,33 @@ import time
 
 from common import ROOT, markdown_table, median, write_report
 
-WAYS = {"2 workers (lammps module)": ["--workers", "2"],
-        "2 partitions (mpirun lmp -partition 2x1)": ["--partitions", "2"],
-        "1 worker": ["--workers", "1"]}
+WAYS = {
+    "2 workers (lammps module)": ["--workers", "2"],
+    "2 partitions (mpirun lmp -partition 2x1)": ["--partitions", "2"],
+    "1 worker": ["--workers", "1"],
+}
 PAPER_IMPACTS = 6400
 
 
 def run(name: str, extra: list[str], samples: int, angles: int) -> tuple[float, int]:
     shutil.rmtree(ROOT / "runs" / name, ignore_errors=True)
-    command = [sys.executable, "-m", "runner", "study", "paper", "--name", name,
-               "--samples", str(samples), "--angles", str(angles), *extra]
+    command = [
+        sys.executable,
+        "-m",
+        "runner",
+        "study",
+        "paper",
+        "--name",
+        name,
+        "--samples",
+        str(samples),
+        "--angles",
+        str(angles),
+        *extra,
+    ]
     start = time.monotonic()
     proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
-    if proc.returncode not in (0, 1):        # 1: some impacts failed, which the count shows
+    if proc.returncode not in (0, 1):  # 1: some impacts failed, which the count shows
         raise subprocess.CalledProcessError(proc.returncode, command, proc.stdout, proc.stderr)
     seconds = time.monotonic() - start
     impacts = len(list((ROOT / "runs" / name).glob("*/*/*/result.json")))
@@ -57,14 +71,25 @@ def main() -> None:
     for way in WAYS:
         seconds = median(times[way])
         rate = counts[way] / seconds * 60
-        rows.append([way, str(counts[way]), f"{seconds:.1f}", f"{rate:.1f}",
-                     f"{PAPER_IMPACTS / rate / 60:.2f} h"])
-    body = (f"{args.samples} sample(s) x {args.angles} angles x 4 lattices, 800-point disks, default "
-            f"settings; medians of {args.repeats} interleaved runs, wall time of the whole command.\n\n"
-            + markdown_table(["way", "impacts", "s", "impacts per minute", "paper (6,400 impacts)"],
-                             rows))
+        rows.append(
+            [
+                way,
+                str(counts[way]),
+                f"{seconds:.1f}",
+                f"{rate:.1f}",
+                f"{PAPER_IMPACTS / rate / 60:.2f} h",
+            ]
+        )
+    body = (
+        f"{args.samples} sample(s) x {args.angles} angles x 4 lattices, 800-point disks, default "
+        f"settings; medians of {args.repeats} interleaved runs, wall time of the whole command.\n\n"
+        + markdown_table(
+            ["way", "impacts", "s", "impacts per minute", "paper (6,400 impacts)"], rows
+        )
+    )
     command = "python bench/study_throughput.py" + "".join(
-        f" --{k} {v}" for k, v in vars(args).items())
+        f" --{k} {v}" for k, v in vars(args).items()
+    )
     print(body)
     print(write_report("study_throughput", "Study throughput", command, body))
 

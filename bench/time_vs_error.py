@@ -32,50 +32,59 @@ from runner.impact import run_scene
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
 
-TOLERANCE = 1e-3          # on e and beta, smooth scenes
-ENERGY_TOLERANCE = 5e-3   # on the total energy, rough scenes: every scheme has ~1e-3
+TOLERANCE = 1e-3  # on e and beta, smooth scenes
+ENERGY_TOLERANCE = 5e-3  # on the total energy, rough scenes: every scheme has ~1e-3
 VERLET_STEPS = (1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2)
 RESPA_STEPS = (4e-3, 8e-3, 1.2e-2, 1.6e-2)
 # How --max-drift's default was chosen, from this table and from study runs
 # (their commands are in the text); kept here so that make bench keeps it.
 DRIFT_NOTE = (
-    '**The accuracy guard.** Every result.json records its energy drift (the change of the '
-    'total energy over the initial kinetic energy) and is flagged (`drift_exceeded`, also a '
-    'column of impacts.csv) when it exceeds `--max-drift`, default 0.05 '
-    '(`analysis.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, naming dt.'
-    ' On rough scenes the drift has a floor that a smaller step does not remove (1.1e-3 at dt'
-    ' = 1e-3 above: the lever rule is not exactly conservative, MODEL.md section 2), and it '
-    'is largest near head-on. At the default dt = 4e-3 it reached 9.9e-3 in 68 impacts of the'
-    ' random lattice (30 samples at 5.7 and 80.5 degrees, 8 at 37.7; median 8e-4 at 5.7 '
+    "**The accuracy guard.** Every result.json records its energy drift (the change of the "
+    "total energy over the initial kinetic energy) and is flagged (`drift_exceeded`, also a "
+    "column of impacts.csv) when it exceeds `--max-drift`, default 0.05 "
+    "(`analysis.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, naming dt."
+    " On rough scenes the drift has a floor that a smaller step does not remove (1.1e-3 at dt"
+    " = 1e-3 above: the lever rule is not exactly conservative, MODEL.md section 2), and it "
+    "is largest near head-on. At the default dt = 4e-3 it reached 9.9e-3 in 68 impacts of the"
+    " random lattice (30 samples at 5.7 and 80.5 degrees, 8 at 37.7; median 8e-4 at 5.7 "
     "degrees), at dt = 8e-3 1.9e-2 (24 impacts). The threshold is 5 times the default's "
     "largest, and above every rough scene's in the table at steps up to 1.2e-2, whose e and "
-    'beta stay within 1e-3 of the reference; dt = 0.02 gives 0.14 on the default disk at 60 '
-    'degrees (seed 3) and moves e from 0.298 to 0.246. Measured with `python -m runner study '
-    'demo --name probe --angles 2 --samples 30 --workers 1`, and `--angles 3 --samples 8` '
-    'with and without `--dt 0.008`.')
+    "beta stay within 1e-3 of the reference; dt = 0.02 gives 0.14 on the default disk at 60 "
+    "degrees (seed 3) and moves e from 0.298 to 0.246. Measured with `python -m runner study "
+    "demo --name probe --angles 2 --samples 30 --workers 1`, and `--angles 3 --samples 8` "
+    "with and without `--dt 0.008`."
+)
 
 
 # The default is one step below this table's pick: over a whole study the
 # energy drift has a tail that nine scenes do not show (bench/drift_tail.py).
 DEFAULT_NOTE = (
-    '**The default, dt = 8e-3**, is one step below the pick above. On nine scenes dt = 1.2e-2 '
-    'meets the criteria, but the whole paper study at 1.2e-2 (6,400 impacts) had a tail of '
-    'energy drift: 11 impacts above the accuracy guard\'s 0.05, up to 0.14, most of them '
-    'grazing (80.5 degrees, where the disk slides at 0.6 c) or on one wall (seed 53). Run '
-    'again (`python bench/drift_tail.py`, [drift_tail.md](drift_tail.md)), the 24 worst '
-    'drifted at most 5.0e-2 at 8e-3 (median 1.8e-2, the grazing ones below 5e-4), 3.4e-2 at '
-    '6e-3 and 1.8e-2 at 4e-3: no step removes the near-normal tail, which shrinks about as '
-    'dt^1.5, and 8e-3 is the largest that keeps the whole study under the guard.')
+    "**The default, dt = 8e-3**, is one step below the pick above. On nine scenes dt = 1.2e-2 "
+    "meets the criteria, but the whole paper study at 1.2e-2 (6,400 impacts) had a tail of "
+    "energy drift: 11 impacts above the accuracy guard's 0.05, up to 0.14, most of them "
+    "grazing (80.5 degrees, where the disk slides at 0.6 c) or on one wall (seed 53). Run "
+    "again (`python bench/drift_tail.py`, [drift_tail.md](drift_tail.md)), the 24 worst "
+    "drifted at most 5.0e-2 at 8e-3 (median 1.8e-2, the grazing ones below 5e-4), 3.4e-2 at "
+    "6e-3 and 1.8e-2 at 4e-3: no step removes the near-normal tail, which shrinks about as "
+    "dt^1.5, and 8e-3 is the largest that keeps the whole study under the guard."
+)
 
 
 def settings() -> list[tuple[str, str, object]]:
     """(label, kind, options) of every configuration, cheapest last within a family."""
     runs = [(f"verlet dt={dt:g}", "lammps", RunOptions(dt=dt)) for dt in VERLET_STEPS]
-    runs += [(f"respa 2 dt={dt:g}", "lammps", RunOptions(dt=dt, integrator="respa", nrespa=2))
-             for dt in RESPA_STEPS]
+    runs += [
+        (f"respa 2 dt={dt:g}", "lammps", RunOptions(dt=dt, integrator="respa", nrespa=2))
+        for dt in RESPA_STEPS
+    ]
     runs += [("verlet dt=0.004 pair", "lammps", RunOptions(dt=4e-3, contact="pair"))]
-    runs += [("reference forest-ruth dt=0.001 (paper)", "reference",
-              ReferenceOptions(integrator="forest-ruth", dt=1e-3))]
+    runs += [
+        (
+            "reference forest-ruth dt=0.001 (paper)",
+            "reference",
+            ReferenceOptions(integrator="forest-ruth", dt=1e-3),
+        )
+    ]
     return runs
 
 
@@ -106,11 +115,16 @@ def measure(out: Path, only: list[str] | None) -> dict:
                 if "error" in result:
                     row["error"] = result["error"]
                 else:
-                    row.update(seconds=result["wall_seconds"], steps=result["steps"],
-                               drift=abs(result["energy_drift"]))
+                    row.update(
+                        seconds=result["wall_seconds"],
+                        steps=result["steps"],
+                        drift=abs(result["energy_drift"]),
+                    )
                     if surface == "smooth":
-                        row.update(de=abs(result["e"] - references[name]["e"]),
-                                   dbeta=abs(result["beta"] - references[name]["beta"]))
+                        row.update(
+                            de=abs(result["e"] - references[name]["e"]),
+                            dbeta=abs(result["beta"] - references[name]["beta"]),
+                        )
                 rows[(label, surface, name)] = row
                 print(label, surface, name, row, flush=True)
     return rows
@@ -120,37 +134,60 @@ def summary(rows: dict) -> list[dict]:
     labels = list(dict.fromkeys(label for label, _, _ in rows))
     out = []
     for label in labels:
-        smooth = [r for (l, s, _), r in rows.items() if l == label and s == "smooth" and "error" not in r]
+        smooth = [
+            r for (l, s, _), r in rows.items() if l == label and s == "smooth" and "error" not in r
+        ]
         rough = [r for (l, s, _), r in rows.items() if l == label and s == "rough"]
         failed = [r["error"] for r in rough if "error" in r]
         survived = [r for r in rough if "error" not in r]
-        out.append({
-            "label": label, "failed": len(failed), "first_error": failed[0] if failed else "",
-            "de": max((r["de"] for r in smooth), default=np.nan),
-            "dbeta": max((r["dbeta"] for r in smooth), default=np.nan),
-            "error": max((max(r["de"], r["dbeta"]) for r in smooth), default=np.nan),
-            "drift": max((r["drift"] for r in survived), default=np.nan),
-            "seconds": median([r["seconds"] for r in survived]) if survived else np.nan,
-            "steps": median([r["steps"] for r in survived]) if survived else np.nan,
-        })
+        out.append(
+            {
+                "label": label,
+                "failed": len(failed),
+                "first_error": failed[0] if failed else "",
+                "de": max((r["de"] for r in smooth), default=np.nan),
+                "dbeta": max((r["dbeta"] for r in smooth), default=np.nan),
+                "error": max((max(r["de"], r["dbeta"]) for r in smooth), default=np.nan),
+                "drift": max((r["drift"] for r in survived), default=np.nan),
+                "seconds": median([r["seconds"] for r in survived]) if survived else np.nan,
+                "steps": median([r["steps"] for r in survived]) if survived else np.nan,
+            }
+        )
     return out
 
 
 def plot(table: list[dict], path: Path) -> None:
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7, 5))
     for family, marker in (("verlet dt", "o"), ("respa", "s"), ("reference", "^"), ("pair", "x")):
-        points = [r for r in table if r["label"].startswith(family) or (family == "pair" and "pair" in r["label"])]
-        points = [r for r in points if not r["failed"] and not (family != "pair" and "pair" in r["label"])]
+        points = [
+            r
+            for r in table
+            if r["label"].startswith(family) or (family == "pair" and "pair" in r["label"])
+        ]
+        points = [
+            r for r in points if not r["failed"] and not (family != "pair" and "pair" in r["label"])
+        ]
         if points:
-            ax.loglog([r["error"] for r in points], [r["seconds"] for r in points], marker,
-                      label=family.replace(" dt", ""), linestyle="-" if family in ("verlet dt", "respa") else "")
+            ax.loglog(
+                [r["error"] for r in points],
+                [r["seconds"] for r in points],
+                marker,
+                label=family.replace(" dt", ""),
+                linestyle="-" if family in ("verlet dt", "respa") else "",
+            )
             for r in points:
-                ax.annotate(r["label"].split("dt=")[-1].split(" ")[0], (r["error"], r["seconds"]),
-                            fontsize=7, xytext=(3, 3), textcoords="offset points")
+                ax.annotate(
+                    r["label"].split("dt=")[-1].split(" ")[0],
+                    (r["error"], r["seconds"]),
+                    fontsize=7,
+                    xytext=(3, 3),
+                    textcoords="offset points",
+                )
     ax.axvline(TOLERANCE, color="grey", linestyle=":", label="1e-3")
     ax.set_xlabel("largest error of e or beta, nine smooth scenes")
     ax.set_ylabel("median wall time per rough impact (s)")
@@ -163,8 +200,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=str(ROOT / "runs" / "bench"))
     parser.add_argument("--only", nargs="*", help="only settings whose label contains one of these")
-    parser.add_argument("--summarise", action="store_true",
-                        help="only redo the table from the rows of the last run (rows.json)")
+    parser.add_argument(
+        "--summarise",
+        action="store_true",
+        help="only redo the table from the rows of the last run (rows.json)",
+    )
     args = parser.parse_args()
     saved = Path(args.out) / "rows.json"
     if args.summarise:
@@ -173,8 +213,14 @@ def main() -> None:
         rows = measure(Path(args.out), args.only)
         saved.write_text(json.dumps({"|".join(k): v for k, v in rows.items()}, indent=1))
     table = summary(rows)
-    lammps_ok = [r for r in table if not r["failed"] and r["error"] < TOLERANCE
-                 and r["drift"] < ENERGY_TOLERANCE and "reference" not in r["label"]]
+    lammps_ok = [
+        r
+        for r in table
+        if not r["failed"]
+        and r["error"] < TOLERANCE
+        and r["drift"] < ENERGY_TOLERANCE
+        and "reference" not in r["label"]
+    ]
     # The study pays per step: its workers start LAMMPS once, while the seconds
     # here include starting lmp for every impact, which hides the step count.
     best = min(lammps_ok, key=lambda r: (r["steps"], r["seconds"])) if lammps_ok else None
@@ -182,27 +228,51 @@ def main() -> None:
     lines = []
     for r in table:
         status = f"{r['failed']} of 9 failed: {r['first_error'][:70]}" if r["failed"] else ""
-        lines.append([r["label"], f"{r['de']:.1e}", f"{r['dbeta']:.1e}", f"{r['drift']:.1e}",
-                      f"{r['steps']:.0f}", f"{r['seconds']:.2f}", status])
-    body = markdown_table(["setting", "max error e (smooth)", "max error beta (smooth)",
-                           "max energy error (rough)", "median steps", "median s per impact (rough)",
-                           "rough runs that failed"], lines)
+        lines.append(
+            [
+                r["label"],
+                f"{r['de']:.1e}",
+                f"{r['dbeta']:.1e}",
+                f"{r['drift']:.1e}",
+                f"{r['steps']:.0f}",
+                f"{r['seconds']:.2f}",
+                status,
+            ]
+        )
+    body = markdown_table(
+        [
+            "setting",
+            "max error e (smooth)",
+            "max error beta (smooth)",
+            "max energy error (rough)",
+            "median steps",
+            "median s per impact (rough)",
+            "rough runs that failed",
+        ],
+        lines,
+    )
     if best:
-        body += (f"\n\nFastest setting (fewest steps per impact: a study pays per step, "
-                 f"the seconds above also count starting lmp for each impact) with errors of e "
-                 f"and beta below {TOLERANCE:g} on every smooth "
-                 f"scene, an energy error below {ENERGY_TOLERANCE:g} on every rough scene, and no "
-                 f"failure: **{best['label']}**, largest error {best['error']:.1e} (margin "
-                 f"{TOLERANCE / best['error']:.1f}x), energy error {best['drift']:.1e} (margin "
-                 f"{ENERGY_TOLERANCE / best['drift']:.1f}x), median {best['seconds']:.2f} s per impact.")
+        body += (
+            f"\n\nFastest setting (fewest steps per impact: a study pays per step, "
+            f"the seconds above also count starting lmp for each impact) with errors of e "
+            f"and beta below {TOLERANCE:g} on every smooth "
+            f"scene, an energy error below {ENERGY_TOLERANCE:g} on every rough scene, and no "
+            f"failure: **{best['label']}**, largest error {best['error']:.1e} (margin "
+            f"{TOLERANCE / best['error']:.1f}x), energy error {best['drift']:.1e} (margin "
+            f"{ENERGY_TOLERANCE / best['drift']:.1f}x), median {best['seconds']:.2f} s per impact."
+        )
     if best and paper:
-        body += (f" The paper's scheme (Forest-Ruth at 1e-3, our numpy implementation) takes a "
-                 f"median {paper['seconds']:.1f} s ({paper['seconds'] / best['seconds']:.0f}x) with "
-                 f"largest error {paper['error']:.1e}.")
+        body += (
+            f" The paper's scheme (Forest-Ruth at 1e-3, our numpy implementation) takes a "
+            f"median {paper['seconds']:.1f} s ({paper['seconds'] / best['seconds']:.0f}x) with "
+            f"largest error {paper['error']:.1e}."
+        )
     plot(table, ROOT / "docs" / "benchmarks" / "time_vs_error.png")
     body += "\n\n" + DEFAULT_NOTE + "\n\n" + DRIFT_NOTE
     body += "\n\n![time against error](time_vs_error.png)\n"
-    (ROOT / "docs" / "benchmarks" / "time_vs_error.json").write_text(json.dumps(table, indent=1) + "\n")
+    (ROOT / "docs" / "benchmarks" / "time_vs_error.json").write_text(
+        json.dumps(table, indent=1) + "\n"
+    )
     print(body)
     print(f"wrote {write_report('time_vs_error', 'Run time against error', 'make bench', body)}")
 

@@ -38,8 +38,12 @@ def one_impact(args: tuple[float, float, int, str]) -> dict:
         result = run_impact(spec, folder, RunOptions(every=25))
     except (BuildError, LammpsError) as error:
         return {"width": width, "gamma": gamma, "seed": seed, "error": str(error)}
-    return {"width": width, "gamma": gamma, "seed": seed,
-            **{k: result[k] for k in ("e", "beta", "contact_time", "side_clearance")}}
+    return {
+        "width": width,
+        "gamma": gamma,
+        "seed": seed,
+        **{k: result[k] for k in ("e", "beta", "contact_time", "side_clearance")},
+    }
 
 
 def mean_se(values: list[float]) -> str:
@@ -57,8 +61,12 @@ def main() -> None:
     args = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as tmp:
-        tasks = [(w, g, s, str(Path(tmp) / f"w{w:g}_g{g:g}_s{s}"))
-                 for s in range(1, args.seeds + 1) for g in args.angles for w in args.widths]
+        tasks = [
+            (w, g, s, str(Path(tmp) / f"w{w:g}_g{g:g}_s{s}"))
+            for s in range(1, args.seeds + 1)
+            for g in args.angles
+            for w in args.widths
+        ]
         with ProcessPoolExecutor(args.workers) as pool:
             results = list(pool.map(one_impact, tasks))
 
@@ -68,22 +76,47 @@ def main() -> None:
             runs = [r for r in results if r["gamma"] == gamma and r["width"] == width]
             good = [r for r in runs if "error" not in r]
             clearance = np.array([r["side_clearance"] for r in good])
-            rows.append([f"{gamma:g}", f"{width:g}", str(len(good)), str(len(runs) - len(good)),
-                         mean_se([r["e"] for r in good]), mean_se([r["beta"] for r in good]),
-                         f"{np.median([r['contact_time'] for r in good]):.1f}",
-                         str(int((clearance < 1.0).sum())), str(int((clearance < 0.0).sum()))])
+            rows.append(
+                [
+                    f"{gamma:g}",
+                    f"{width:g}",
+                    str(len(good)),
+                    str(len(runs) - len(good)),
+                    mean_se([r["e"] for r in good]),
+                    mean_se([r["beta"] for r in good]),
+                    f"{np.median([r['contact_time'] for r in good]):.1f}",
+                    str(int((clearance < 1.0).sum())),
+                    str(int((clearance < 0.0).sum())),
+                ]
+            )
             print(" | ".join(rows[-1]), flush=True)
     errors = sorted({r["error"][:100] for r in results if "error" in r})
-    body = (f"Random lattice, seeds 1 to {args.seeds}, the study's settings; a wall of each width "
-            "at the disk's number density.\n\n"
-            + markdown_table(["gamma", "wall width, R", "impacts", "failed", "e", "beta",
-                              "median contact time, R/c", "centre within 1 R of a side",
-                              "centre past a side"], rows)
-            + ("\n\nFailures: " + "; ".join(errors) if errors else ""))
+    body = (
+        f"Random lattice, seeds 1 to {args.seeds}, the study's settings; a wall of each width "
+        "at the disk's number density.\n\n"
+        + markdown_table(
+            [
+                "gamma",
+                "wall width, R",
+                "impacts",
+                "failed",
+                "e",
+                "beta",
+                "median contact time, R/c",
+                "centre within 1 R of a side",
+                "centre past a side",
+            ],
+            rows,
+        )
+        + ("\n\nFailures: " + "; ".join(errors) if errors else "")
+    )
     print(body)
-    command = (f"python bench/wall_width.py --seeds {args.seeds} --widths "
-               + " ".join(f"{w:g}" for w in args.widths) + " --angles "
-               + " ".join(f"{g:g}" for g in args.angles))
+    command = (
+        f"python bench/wall_width.py --seeds {args.seeds} --widths "
+        + " ".join(f"{w:g}" for w in args.widths)
+        + " --angles "
+        + " ".join(f"{g:g}" for g in args.angles)
+    )
     print(f"wrote {write_report('wall_width', 'Wall width at grazing angles', command, body)}")
 
 

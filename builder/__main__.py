@@ -13,26 +13,40 @@ from .scene import build_scene
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="python -m builder",
-                           description="Build lattices and write LAMMPS data files.")
+    parser = OneLineParser(
+        prog="python -m builder", description="Build lattices and write LAMMPS data files."
+    )
     commands = parser.add_subparsers(dest="command", required=True)
 
-    scene = commands.add_parser("scene", help="write scene.data, scene.lmp and scene.json",
-                                description="Build a disk and a wall placed for an oblique "
-                                            "impact and write them for decks/impact.lmp.")
+    scene = commands.add_parser(
+        "scene",
+        help="write scene.data, scene.lmp and scene.json",
+        description="Build a disk and a wall placed for an oblique "
+        "impact and write them for decks/impact.lmp.",
+    )
     add_scene_arguments(scene)
-    scene.add_argument("--springs", choices=SPRING_STYLES, default=DEFAULT_SPRINGS,
-                       help="bond style: harmonic/quartic (the model's quartic springs, the "
-                            "project's own style; default), class2 (the same springs, LAMMPS's "
-                            "built-in style) or harmonic (no quartic)")
+    scene.add_argument(
+        "--springs",
+        choices=SPRING_STYLES,
+        default=DEFAULT_SPRINGS,
+        help="bond style: harmonic/quartic (the model's quartic springs, the "
+        "project's own style; default), class2 (the same springs, LAMMPS's "
+        "built-in style) or harmonic (no quartic)",
+    )
     scene.add_argument("--out", required=True, help="folder to write into")
 
-    table = commands.add_parser("table", help="write the pair-variant contact table",
-                                description="Tabulate E = V0 exp(-a r) for pair_style table.")
+    table = commands.add_parser(
+        "table",
+        help="write the pair-variant contact table",
+        description="Tabulate E = V0 exp(-a r) for pair_style table.",
+    )
     table.add_argument("--a", type=positive_float, default=300.0, help="decay rate (default: 300)")
-    table.add_argument("--v0", type=positive_float, default=150.0, help="energy scale (default: 150)")
-    table.add_argument("--points", type=count(100), default=POINTS,
-                       help=f"points in the table (default: {POINTS})")
+    table.add_argument(
+        "--v0", type=positive_float, default=150.0, help="energy scale (default: 150)"
+    )
+    table.add_argument(
+        "--points", type=count(100), default=POINTS, help=f"points in the table (default: {POINTS})"
+    )
     table.add_argument("--out", required=True, help="folder to write into")
 
     args = parser.parse_args(argv)

@@ -45,12 +45,12 @@ LATTICES = ("random", "triangular", "square")
 class Body:
     """Points, their roles, and springs with relative stiffness."""
 
-    points: np.ndarray      # (n, 2) positions
-    role: np.ndarray        # (n,) SURFACE, INTERIOR or FIXED
-    springs: np.ndarray     # (m, 2) point indices
-    stiffness: np.ndarray   # (m,) spring constant in units of the body's ka
-    surface: np.ndarray     # indices of the contact surface row, in order
-    spacing: float          # nominal distance between neighbouring points
+    points: np.ndarray  # (n, 2) positions
+    role: np.ndarray  # (n,) SURFACE, INTERIOR or FIXED
+    springs: np.ndarray  # (m, 2) point indices
+    stiffness: np.ndarray  # (m,) spring constant in units of the body's ka
+    surface: np.ndarray  # indices of the contact surface row, in order
+    spacing: float  # nominal distance between neighbouring points
     held: np.ndarray | None = None  # (n,) True for points held fixed; None: none are
     # Outline segments that the pruned Delaunay triangulation left out (the
     # builder used to refuse such a body); a body with any was triangulated
@@ -123,8 +123,9 @@ def square_springs(points: np.ndarray, lattice: np.ndarray, spacing: float, k2_o
     return np.sort(np.array(pairs), axis=1), np.array(stiffness)
 
 
-def assemble(points, role, surface, outline, spacing, lattice="random", n_regular=0,
-             k2_over_k1=None) -> Body:
+def assemble(
+    points, role, surface, outline, spacing, lattice="random", n_regular=0, k2_over_k1=None
+) -> Body:
     """Triangulate a body; for a square interior swap in the lattice's own springs.
 
     ``n_regular`` is the number of trailing points that form a regular lattice.
@@ -145,9 +146,18 @@ def assemble(points, role, surface, outline, spacing, lattice="random", n_regula
         grid_set = {tuple(p) for p in grid_pairs.tolist()}
         lattice_edges = springs[~joining]
         extra = np.array([p for p in lattice_edges.tolist() if tuple(p) not in grid_set], int)
-        extra_k = np.array([k2_over_k1 if np.isclose(np.linalg.norm(points[a] - points[b]),
-                                                     np.sqrt(2) * spacing) else 1.0
-                            for a, b in extra]) if len(extra) else np.zeros(0)
+        extra_k = (
+            np.array(
+                [
+                    k2_over_k1
+                    if np.isclose(np.linalg.norm(points[a] - points[b]), np.sqrt(2) * spacing)
+                    else 1.0
+                    for a, b in extra
+                ]
+            )
+            if len(extra)
+            else np.zeros(0)
+        )
         springs = np.concatenate([band_pairs, grid_pairs, extra.reshape(-1, 2)])
         stiffness = np.concatenate([np.ones(len(band_pairs)), grid_k, extra_k])
         order = np.lexsort((springs[:, 1], springs[:, 0]))
@@ -155,8 +165,13 @@ def assemble(points, role, surface, outline, spacing, lattice="random", n_regula
     return Body(points, role, springs, stiffness, surface, spacing, steep=steep)
 
 
-def make_disk(rng: np.random.Generator, lattice: str = "random", n_points: int = 800,
-              roughness: float = 0.03, k2_over_k1: float = 3.0 / 7.0) -> Body:
+def make_disk(
+    rng: np.random.Generator,
+    lattice: str = "random",
+    n_points: int = 800,
+    roughness: float = 0.03,
+    k2_over_k1: float = 3.0 / 7.0,
+) -> Body:
     """A disk of radius 1 centred at the origin.
 
     The surface row is evenly spaced on the circle and pushed along the radius
@@ -180,13 +195,21 @@ def make_disk(rng: np.random.Generator, lattice: str = "random", n_points: int =
     points = np.concatenate([surface_points, interior])
     role = np.concatenate([np.full(n_surface, SURFACE), np.full(len(interior), INTERIOR)])
     outline = np.arange(n_surface)
-    return assemble(points, role, outline, outline, spacing, lattice,
-                    n_regular=len(interior) if lattice != "random" else 0,
-                    k2_over_k1=k2_over_k1)
+    return assemble(
+        points,
+        role,
+        outline,
+        outline,
+        spacing,
+        lattice,
+        n_regular=len(interior) if lattice != "random" else 0,
+        k2_over_k1=k2_over_k1,
+    )
 
 
-def random_rectangle(rng: np.random.Generator, spacing: float, width: float, height: float,
-                     roughness: float = 0.0):
+def random_rectangle(
+    rng: np.random.Generator, spacing: float, width: float, height: float, roughness: float = 0.0
+):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
     Rows of points on its four sides; the top row (but its corners) pushed
@@ -199,9 +222,9 @@ def random_rectangle(rng: np.random.Generator, spacing: float, width: float, hei
     n_side = int(round(height / spacing))
     top_x = np.linspace(-half, half, n_top + 1)
     top_y = np.zeros(n_top + 1)
-    top_y[1:-1] = roughness * rng.standard_normal(n_top - 1)   # corners stay on the sides
+    top_y[1:-1] = roughness * rng.standard_normal(n_top - 1)  # corners stay on the sides
     top = np.stack([top_x, top_y], axis=1)
-    side_y = np.linspace(0.0, -height, n_side + 1)[1:]          # below the top corners
+    side_y = np.linspace(0.0, -height, n_side + 1)[1:]  # below the top corners
     right = np.stack([np.full(n_side, half), side_y], axis=1)
     left = np.stack([np.full(n_side, -half), side_y], axis=1)
     bottom = np.stack([top_x[1:-1], np.full(n_top - 1, -height)], axis=1)
@@ -214,15 +237,28 @@ def random_rectangle(rng: np.random.Generator, spacing: float, width: float, hei
 
     # Counter-clockwise: bottom-left corner, bottom row, right side up, top row
     # leftwards, left side down.
-    outline = np.concatenate([rows["left"][-1:], rows["bottom"], rows["right"][::-1],
-                              rows["top"][::-1], rows["left"][:-1]])
+    outline = np.concatenate(
+        [
+            rows["left"][-1:],
+            rows["bottom"],
+            rows["right"][::-1],
+            rows["top"][::-1],
+            rows["left"][:-1],
+        ]
+    )
     candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
     interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
     return np.concatenate([rim, interior]), outline, rows
 
 
-def make_wall(rng: np.random.Generator, n_points: int, width: float = 8.0, height: float = 2.0,
-              roughness: float = 0.03, fixed: str = "sides") -> Body:
+def make_wall(
+    rng: np.random.Generator,
+    n_points: int,
+    width: float = 8.0,
+    height: float = 2.0,
+    roughness: float = 0.03,
+    fixed: str = "sides",
+) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
     The top face is the contact surface. The points on the vertical sides are

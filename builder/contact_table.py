@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 
 KEYWORD = "EXP"
-INNER = 1e-3    # in R: the force there is a V0 exp(-0.3), far beyond any real contact
-OUTER = 1.0     # in R: any lattice spacing fits below it
+INNER = 1e-3  # in R: the force there is a V0 exp(-0.3), far beyond any real contact
+OUTER = 1.0  # in R: any lattice spacing fits below it
 POINTS = 20000  # file resolution; spline error ~ (a h)^4 / 384 ~ 1e-10 at a = 300
 
 
@@ -28,12 +28,15 @@ def table_text(a: float, v0: float, radius: float = 1.0, points: int = POINTS) -
     r = np.linspace(INNER * radius, OUTER * radius, points)
     energy = v0 * np.exp(-a * r)
     force = a * energy
-    header = (f"# Contact repulsion E = V0 exp(-a r), F = -dE/dr (MODEL.md section 2)\n"
-              f"# a = {a!r} / length, V0 = {v0!r} energy\n\n"
-              f"{KEYWORD}\nN {points} R {float(r[0])!r} {float(r[-1])!r}\n\n")
-    rows = "".join(f"{i} {ri!r} {ei!r} {fi!r}\n"
-                   for i, (ri, ei, fi) in enumerate(zip(r.tolist(), energy.tolist(),
-                                                        force.tolist()), start=1))
+    header = (
+        f"# Contact repulsion E = V0 exp(-a r), F = -dE/dr (MODEL.md section 2)\n"
+        f"# a = {a!r} / length, V0 = {v0!r} energy\n\n"
+        f"{KEYWORD}\nN {points} R {float(r[0])!r} {float(r[-1])!r}\n\n"
+    )
+    rows = "".join(
+        f"{i} {ri!r} {ei!r} {fi!r}\n"
+        for i, (ri, ei, fi) in enumerate(zip(r.tolist(), energy.tolist(), force.tolist()), start=1)
+    )
     return header + rows
 
 

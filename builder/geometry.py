@@ -15,7 +15,9 @@ def distance_to_segments(points: np.ndarray, starts: np.ndarray, ends: np.ndarra
     return np.linalg.norm(points[:, None, :] - foot, axis=-1)
 
 
-def distance_to_polyline(points: np.ndarray, vertices: np.ndarray, closed: bool = False) -> np.ndarray:
+def distance_to_polyline(
+    points: np.ndarray, vertices: np.ndarray, closed: bool = False
+) -> np.ndarray:
     """Distance from each point to the nearest feature of a polyline.
 
     Parameters

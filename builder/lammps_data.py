@@ -31,8 +31,9 @@ def _rows(*columns) -> str:
     return "".join(" ".join(map(repr, row)) + "\n" for row in zip(*lists))
 
 
-def bond_coeff_columns(r0: np.ndarray, ka: np.ndarray, kb_over_ka: float,
-                       springs: str) -> list[np.ndarray]:
+def bond_coeff_columns(
+    r0: np.ndarray, ka: np.ndarray, kb_over_ka: float, springs: str
+) -> list[np.ndarray]:
     """Bond coefficients per spring, for the bond style ``springs``.
 
     harmonic/quartic (potentials/bond_harmonic_quartic.cpp): r0 ka kb, the
@@ -49,10 +50,19 @@ def bond_coeff_columns(r0: np.ndarray, ka: np.ndarray, kb_over_ka: float,
     raise ValueError(f"springs must be one of {', '.join(SPRING_STYLES)}; got {springs!r}")
 
 
-def network_data_text(title: str, positions: np.ndarray, velocities: np.ndarray,
-                      types: np.ndarray, type_names: dict[int, str], molecule: np.ndarray,
-                      pairs: np.ndarray, ka: np.ndarray, kb_over_ka: float, springs: str,
-                      pad: float) -> str:
+def network_data_text(
+    title: str,
+    positions: np.ndarray,
+    velocities: np.ndarray,
+    types: np.ndarray,
+    type_names: dict[int, str],
+    molecule: np.ndarray,
+    pairs: np.ndarray,
+    ka: np.ndarray,
+    kb_over_ka: float,
+    springs: str,
+    pad: float,
+) -> str:
     """A 2-D data file of point masses 1 and springs, one bond type per spring."""
     n, m = len(positions), len(pairs)
     lo = (positions.min(axis=0) - pad).tolist()
@@ -66,25 +76,39 @@ def network_data_text(title: str, positions: np.ndarray, velocities: np.ndarray,
         f"LAMMPS data file, {title}\n\n",
         f"{n} atoms\n{m} bonds\n{len(type_names)} atom types\n{m} bond types\n\n",
         f"{lo[0]!r} {hi[0]!r} xlo xhi\n{lo[1]!r} {hi[1]!r} ylo yhi\n-0.5 0.5 zlo zhi\n\n",
-        "Masses\n\n", "".join(f"{t} 1.0  # {name}\n" for t, name in type_names.items()),
+        "Masses\n\n",
+        "".join(f"{t} 1.0  # {name}\n" for t, name in type_names.items()),
         f"\nBond Coeffs # {springs}\n\n",
         _rows(bond_ids, *bond_coeff_columns(r0, ka, kb_over_ka, springs)),
         "\nAtoms # bond\n\n",
         _rows(ids, molecule, types, positions[:, 0], positions[:, 1], zeros),
         "\nVelocities\n\n",
         _rows(ids, velocities[:, 0], velocities[:, 1], zeros),
-        "\nBonds\n\n", _rows(bond_ids, bond_ids, pairs[:, 0] + 1, pairs[:, 1] + 1),
+        "\nBonds\n\n",
+        _rows(bond_ids, bond_ids, pairs[:, 0] + 1, pairs[:, 1] + 1),
     ]
     return "".join(parts)
 
 
 def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     spec = scene.spec
-    title = (f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
-             f"vn={spec.vn!r} springs={springs}")
-    return network_data_text(title, scene.positions, scene.velocities, scene.types, TYPE_NAMES,
-                             scene.molecule, scene.springs, scene.ka, spec.kb_over_ka, springs,
-                             pad=2.0 * scene.info["disk_spacing"])
+    title = (
+        f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
+        f"vn={spec.vn!r} springs={springs}"
+    )
+    return network_data_text(
+        title,
+        scene.positions,
+        scene.velocities,
+        scene.types,
+        TYPE_NAMES,
+        scene.molecule,
+        scene.springs,
+        scene.ka,
+        spec.kb_over_ka,
+        springs,
+        pad=2.0 * scene.info["disk_spacing"],
+    )
 
 
 def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:

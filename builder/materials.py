@@ -78,8 +78,10 @@ def square_ratio_for_poisson(nu: float, angle_deg: float = 0.0) -> float:
     low, high = 1e-6, 1e3
     f = lambda r: square_poisson_ratio(r, angle_deg) - nu  # noqa: E731
     if f(low) * f(high) > 0:
-        raise InputError(f"nu must be between {square_poisson_ratio(low, angle_deg):.3f} and "
-                         f"{square_poisson_ratio(high, angle_deg):.3f} along {angle_deg} degrees, got {nu}")
+        raise InputError(
+            f"nu must be between {square_poisson_ratio(low, angle_deg):.3f} and "
+            f"{square_poisson_ratio(high, angle_deg):.3f} along {angle_deg} degrees, got {nu}"
+        )
     return float(brentq(f, low, high, xtol=1e-14, rtol=1e-14))
 
 
@@ -88,8 +90,9 @@ def _table(path: str) -> tuple[dict, ...]:
     return tuple(json.loads(Path(path).read_text())["materials"])
 
 
-def calibrated(lattice: str, k2_over_k1: float | None = None, angle_deg: float = 0.0,
-               table: Path | str = TABLE) -> dict:
+def calibrated(
+    lattice: str, k2_over_k1: float | None = None, angle_deg: float = 0.0, table: Path | str = TABLE
+) -> dict:
     """The table's entry for a lattice; InputError if it was not calibrated.
 
     Parameters
@@ -118,17 +121,27 @@ def calibrated(lattice: str, k2_over_k1: float | None = None, angle_deg: float =
     ratio = k2_over_k1 if lattice == "square" else None
     if Path(table).exists():
         for entry in _table(str(table)):
-            if (entry["lattice"] == lattice and entry["angle_deg"] == angle_deg
-                    and (ratio is None or np.isclose(entry["k2_over_k1"], ratio, rtol=1e-9))):
+            if (
+                entry["lattice"] == lattice
+                and entry["angle_deg"] == angle_deg
+                and (ratio is None or np.isclose(entry["k2_over_k1"], ratio, rtol=1e-9))
+            ):
                 return entry
     what = f"lattice {lattice}" + (f" with k2_over_k1 = {ratio:.6g}" if ratio is not None else "")
     extra = f" --square {ratio:.6g}" if ratio is not None else ""
-    raise InputError(f"{what} is not calibrated (not in {Path(table).name}); "
-                     f"run: python -m calibration run{extra}")
+    raise InputError(
+        f"{what} is not calibrated (not in {Path(table).name}); "
+        f"run: python -m calibration run{extra}"
+    )
 
 
-def spring_constant(lattice: str, spacing: float, k2_over_k1: float | None = None,
-                    wave_speed: float = 1.0, mass: float = 1.0) -> tuple[float, dict]:
+def spring_constant(
+    lattice: str,
+    spacing: float,
+    k2_over_k1: float | None = None,
+    wave_speed: float = 1.0,
+    mass: float = 1.0,
+) -> tuple[float, dict]:
     """ka that gives the lattice the wave speed ``wave_speed``, and the table entry.
 
     Parameters

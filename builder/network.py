@@ -38,8 +38,9 @@ def outline_edges(outline: np.ndarray) -> np.ndarray:
     return np.sort(np.stack([outline, np.roll(outline, -1)], axis=1), axis=1)
 
 
-def triangulate_body(points: np.ndarray, outline: np.ndarray,
-                     max_length: float) -> tuple[np.ndarray, np.ndarray]:
+def triangulate_body(
+    points: np.ndarray, outline: np.ndarray, max_length: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Springs of a body, the edges of its triangulation inside its outline.
 
     ``outline`` holds the indices of the boundary points in order around the
@@ -77,9 +78,11 @@ def triangulate_body(points: np.ndarray, outline: np.ndarray,
     inside = inside_polygon(points[triangles].mean(axis=1), points[outline])
     springs = unique_edges(triangles[inside])
     still = _missing(springs, boundary)
-    if still:                       # not expected: the outline is a simple polygon
-        raise BuildError(f"{len(still)} surface segment(s) have no triangle inside the body "
-                         f"(first: points {still[0]})")
+    if still:  # not expected: the outline is a simple polygon
+        raise BuildError(
+            f"{len(still)} surface segment(s) have no triangle inside the body "
+            f"(first: points {still[0]})"
+        )
     if not _all_bonded(springs, len(points)):
         unbonded = np.setdiff1d(np.arange(len(points)), springs)
         raise BuildError(f"{unbonded.size} point(s) have no spring (first: point {unbonded[0]})")
@@ -98,8 +101,9 @@ def _all_bonded(springs: np.ndarray, n_points: int) -> bool:
 
 def _side(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Twice the signed area of p, q, r (arrays of points): > 0 when they turn left."""
-    return ((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
-            - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+    return (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (
+        r[..., 0] - p[..., 0]
+    )
 
 
 def _orient(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> float:
@@ -120,7 +124,7 @@ class _Mesh:
 
     def add(self, a: int, b: int, c: int) -> None:
         if _orient(self.points[a], self.points[b], self.points[c]) < 0:
-            b, c = c, b                                    # counter-clockwise
+            b, c = c, b  # counter-clockwise
         self.triangles[self.next_id] = (a, b, c)
         for edge in ((a, b), (b, c), (c, a)):
             self.edges.setdefault(tuple(sorted(edge)), []).append(self.next_id)
@@ -172,8 +176,10 @@ class _Mesh:
             return False
         P = self.points
         x, y = P[edge[0]], P[edge[1]]
-        return (_orient(P[a], P[b], x) * _orient(P[a], P[b], y) < 0
-                and _orient(x, y, P[a]) * _orient(x, y, P[b]) < 0)
+        return (
+            _orient(P[a], P[b], x) * _orient(P[a], P[b], y) < 0
+            and _orient(x, y, P[a]) * _orient(x, y, P[b]) < 0
+        )
 
     def locally_delaunay(self, u: int, v: int, p: int, q: int) -> bool:
         """Whether q is not inside the circumcircle of u, v, p (counter-clockwise)."""
@@ -183,8 +189,12 @@ class _Mesh:
         return float(np.linalg.det(matrix)) <= INCIRCLE_TOLERANCE * size * size
 
 
-def constrain(points: np.ndarray, triangles: np.ndarray, segments: list[tuple[int, int]],
-              constraints: list[tuple[int, int]]) -> np.ndarray:
+def constrain(
+    points: np.ndarray,
+    triangles: np.ndarray,
+    segments: list[tuple[int, int]],
+    constraints: list[tuple[int, int]],
+) -> np.ndarray:
     """A triangulation of ``points`` that has ``segments`` as edges, by edge flips.
 
     ``triangles`` is a triangulation of the points (scipy's Delaunay);
@@ -210,7 +220,7 @@ def constrain(points: np.ndarray, triangles: np.ndarray, segments: list[tuple[in
             edge = queue.popleft()
             u, v, p, q = mesh.quad(edge)
             if not mesh.is_convex(u, v, p, q):
-                queue.append(edge)                         # try again after its neighbours
+                queue.append(edge)  # try again after its neighbours
                 continue
             new = mesh.flip(u, v, p, q)
             changed += [new, *(tuple(sorted(e)) for e in ((u, p), (p, v), (v, q), (q, u)))]
@@ -220,7 +230,7 @@ def constrain(points: np.ndarray, triangles: np.ndarray, segments: list[tuple[in
             raise BuildError(f"surface segment {(a, b)} could not be flipped into the network")
 
     fixed = set(constraints)
-    pending = deque(dict.fromkeys(changed))                # unique, in a fixed order
+    pending = deque(dict.fromkeys(changed))  # unique, in a fixed order
     steps = 0
     while pending:
         steps += 1

@@ -14,15 +14,19 @@ import numpy as np
 
 from . import bodies
 from .bodies import SURFACE, Body
-from .errors import (InputError, require_choice, require_nonnegative, require_positive)
+from .errors import InputError, require_choice, require_nonnegative, require_positive
 from .geometry import distance_to_polyline
 from .materials import spring_constant
 
 # LAMMPS atom types.
 DISK_SURFACE, DISK_INTERIOR, WALL_SURFACE, WALL_INTERIOR, WALL_FIXED = 1, 2, 3, 4, 5
-TYPE_NAMES = {DISK_SURFACE: "disk surface", DISK_INTERIOR: "disk interior",
-              WALL_SURFACE: "wall surface", WALL_INTERIOR: "wall interior",
-              WALL_FIXED: "wall fixed"}
+TYPE_NAMES = {
+    DISK_SURFACE: "disk surface",
+    DISK_INTERIOR: "disk interior",
+    WALL_SURFACE: "wall surface",
+    WALL_INTERIOR: "wall interior",
+    WALL_FIXED: "wall fixed",
+}
 WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 # The readings of the wall that the paper leaves open (MODEL.md section 8):
 # n_wall is a number of points or "density" (the disk's number density), and
@@ -48,7 +52,8 @@ def require_contact_resolved(contact_a: float, spacing: float) -> None:
             f"contact_a must be >= {math.ceil(MIN_CUTOFF_DECAYS / spacing)} at this resolution "
             f"(wall spacing {spacing:.4f} R, the cutoff: at least {MIN_CUTOFF_DECAYS:g} decay "
             f"lengths within it), got {contact_a:g}; 20 / spacing = {20.0 / spacing:.0f} keeps "
-            "the study's 20 (docs/contact.md)")
+            "the study's 20 (docs/contact.md)"
+        )
 
 
 @dataclass
@@ -57,23 +62,23 @@ class SceneSpec:
 
     lattice: str = "random"
     seed: int = 1
-    gamma_deg: float = 45.0       # incidence angle from the wall normal; 0 is head-on
-    vn: float = 0.1               # normal approach speed, in units of c
-    radius: float = 1.0           # R, the unit of length
-    n_disk: int = 800             # target number of points in the disk
+    gamma_deg: float = 45.0  # incidence angle from the wall normal; 0 is head-on
+    vn: float = 0.1  # normal approach speed, in units of c
+    radius: float = 1.0  # R, the unit of length
+    n_disk: int = 800  # target number of points in the disk
     # The wall's reading (MODEL.md section 8) that agrees best with the paper's
     # facts: docs/model.md, docs/benchmarks/scene_readings.md.
-    n_wall: int | str = 1600      # points in the wall, or "density": the disk's number density
-    roughness: float = 0.03       # std of surface displacement, in R
+    n_wall: int | str = 1600  # points in the wall, or "density": the disk's number density
+    roughness: float = 0.03  # std of surface displacement, in R
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
     kb_over_ka: float = 1e-3
     wall_fixed: str = "sides"
-    wall_width: float = 8.0       # in R
-    wall_height: float = 2.0      # in R
-    wall_ka: float | str = 10.0   # wall's ka over the disk's, or "same-c": the disk's wave speed
-    contact_a: float = 300.0      # decay rate of the contact, a R
+    wall_width: float = 8.0  # in R
+    wall_height: float = 2.0  # in R
+    wall_ka: float | str = 10.0  # wall's ka over the disk's, or "same-c": the disk's wave speed
+    contact_a: float = 300.0  # decay rate of the contact, a R
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
-    start_gap: float = 0.1        # extra gap beyond the cutoff at start, in spacings
+    start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
 
     def __post_init__(self) -> None:
         # Same spec, same files: 60 and 60.0 must not write different metadata.
@@ -81,11 +86,24 @@ class SceneSpec:
             value = getattr(self, name)
             if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
                 setattr(self, name, kind(value))
-        for name in ("gamma_deg", "vn", "radius", "roughness", "k2_over_k1", "kb_over_ka",
-                     "wall_width", "wall_height", "wall_ka", "contact_a",
-                     "contact_time_guess", "start_gap"):
+        for name in (
+            "gamma_deg",
+            "vn",
+            "radius",
+            "roughness",
+            "k2_over_k1",
+            "kb_over_ka",
+            "wall_width",
+            "wall_height",
+            "wall_ka",
+            "contact_a",
+            "contact_time_guess",
+            "start_gap",
+        ):
             value = getattr(self, name)
-            if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
+            if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+                value, bool
+            ):
                 setattr(self, name, float(value))
 
     def validate(self) -> None:
@@ -100,10 +118,11 @@ class SceneSpec:
         if not self.n_disk >= 50:
             raise InputError(f"n_disk must be an integer >= 50, got {self.n_disk}")
         if self.n_wall != WALL_DENSITY and not (
-                isinstance(self.n_wall, int) and not isinstance(self.n_wall, bool)
-                and self.n_wall >= 50):
-            raise InputError(f"n_wall must be an integer >= 50 or {WALL_DENSITY!r}, "
-                             f"got {self.n_wall!r}")
+            isinstance(self.n_wall, int) and not isinstance(self.n_wall, bool) and self.n_wall >= 50
+        ):
+            raise InputError(
+                f"n_wall must be an integer >= 50 or {WALL_DENSITY!r}, got {self.n_wall!r}"
+            )
         if not 0.0 <= self.roughness <= 0.1:
             raise InputError(f"roughness must be in [0, 0.1] (units of R), got {self.roughness}")
         require_positive("k2_over_k1", self.k2_over_k1)
@@ -114,9 +133,12 @@ class SceneSpec:
         if not self.wall_height >= 0.5:
             raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
         if self.wall_ka != WALL_SAME_C and not (
-                isinstance(self.wall_ka, float) and 0.01 <= self.wall_ka <= 1000.0):
-            raise InputError(f"wall_ka must be a number in [0.01, 1000] (the wall's ka over the "
-                             f"disk's) or {WALL_SAME_C!r}, got {self.wall_ka!r}")
+            isinstance(self.wall_ka, float) and 0.01 <= self.wall_ka <= 1000.0
+        ):
+            raise InputError(
+                f"wall_ka must be a number in [0.01, 1000] (the wall's ka over the "
+                f"disk's) or {WALL_SAME_C!r}, got {self.wall_ka!r}"
+            )
         require_positive("contact_a", self.contact_a)
         require_contact_resolved(self.contact_a, self.wall_spacing)
         require_nonnegative("contact_time_guess", self.contact_time_guess)
@@ -141,12 +163,12 @@ class Scene:
     """Atoms and springs of a scene, in LAMMPS order, with its metadata."""
 
     spec: SceneSpec
-    positions: np.ndarray     # (n, 2)
-    velocities: np.ndarray    # (n, 2)
-    types: np.ndarray         # (n,) LAMMPS atom types
-    molecule: np.ndarray      # (n,) DISK, WALL_FREE or WALL_HELD
-    springs: np.ndarray       # (m, 2) 0-based atom indices
-    ka: np.ndarray            # (m,) quadratic spring constants
+    positions: np.ndarray  # (n, 2)
+    velocities: np.ndarray  # (n, 2)
+    types: np.ndarray  # (n,) LAMMPS atom types
+    molecule: np.ndarray  # (n,) DISK, WALL_FREE or WALL_HELD
+    springs: np.ndarray  # (m, 2) 0-based atom indices
+    ka: np.ndarray  # (m,) quadratic spring constants
     info: dict = field(default_factory=dict)
 
     @property
@@ -171,9 +193,17 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
     disk, wall : Body
         Points, springs and surfaces of each body, unscaled and unplaced.
     """
-    return (_disk(spec.lattice, spec.seed, spec.n_disk, spec.roughness, spec.k2_over_k1),
-            _wall(spec.seed, spec.wall_points, spec.wall_width, spec.wall_height, spec.roughness,
-                  spec.wall_fixed))
+    return (
+        _disk(spec.lattice, spec.seed, spec.n_disk, spec.roughness, spec.k2_over_k1),
+        _wall(
+            spec.seed,
+            spec.wall_points,
+            spec.wall_width,
+            spec.wall_height,
+            spec.roughness,
+            spec.wall_fixed,
+        ),
+    )
 
 
 def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, np.random.SeedSequence]:
@@ -194,8 +224,13 @@ def _wall(seed, n_wall, width, height, roughness, wall_fixed) -> Body:
     return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed)
 
 
-def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndarray,
-               target_gap: float, contact_x: float) -> np.ndarray:
+def place_disk(
+    disk_surface: np.ndarray,
+    wall_row: np.ndarray,
+    velocity: np.ndarray,
+    target_gap: float,
+    contact_x: float,
+) -> np.ndarray:
     """Centre of the disk such that it is ``target_gap`` from the wall's surface.
 
     The disk starts high enough to clear every asperity, a little upstream so
@@ -205,8 +240,8 @@ def place_disk(disk_surface: np.ndarray, wall_row: np.ndarray, velocity: np.ndar
     point can overshoot (sphere tracing).
     """
     direction = velocity / np.linalg.norm(velocity)
-    touch = -disk_surface[:, 1].min() + target_gap          # centre height at contact
-    safe = wall_row[:, 1].max() + touch + target_gap        # no point in range up here
+    touch = -disk_surface[:, 1].min() + target_gap  # centre height at contact
+    safe = wall_row[:, 1].max() + touch + target_gap  # no point in range up here
     centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
     for _ in range(10000):
         excess = distance_to_polyline(disk_surface + centre, wall_row).min() - target_gap
@@ -250,8 +285,13 @@ def build_scene(spec: SceneSpec) -> Scene:
     reach = spec.wall_width / 2.0 - 1.5
     contact_x = -np.clip(0.5 * velocity[0] * spec.contact_time_guess, 0.0, reach) * R
     wall_row = wall.points[wall.surface] * R
-    centre = place_disk(disk.points[disk.surface] * R, wall_row, velocity,
-                        cutoff + spec.start_gap * cutoff, contact_x)
+    centre = place_disk(
+        disk.points[disk.surface] * R,
+        wall_row,
+        velocity,
+        cutoff + spec.start_gap * cutoff,
+        contact_x,
+    )
 
     # Atom order: the wall's surface row first, left to right, so that
     # consecutive tags are neighbours on the contact polyline; then the rest of
@@ -274,29 +314,50 @@ def build_scene(spec: SceneSpec) -> Scene:
         new_index[order] = np.arange(len(order)) + offset
         return np.sort(new_index[springs], axis=1)
 
-    springs = np.concatenate([renumber(wall.springs, wall_order, 0),
-                              renumber(disk.springs, disk_order, n_wall)])
+    springs = np.concatenate(
+        [renumber(wall.springs, wall_order, 0), renumber(disk.springs, disk_order, n_wall)]
+    )
     ka = np.concatenate([ka_wall * wall.stiffness, ka_disk * disk.stiffness])
     types = np.concatenate([wall_types, disk_types])
     held = wall.held if wall.held is not None else np.zeros(len(wall.points), bool)
-    molecule = np.concatenate([np.where(held[wall_order], WALL_HELD, WALL_FREE),
-                               np.full(len(disk_order), DISK)])
+    molecule = np.concatenate(
+        [np.where(held[wall_order], WALL_HELD, WALL_FREE), np.full(len(disk_order), DISK)]
+    )
 
     scene = Scene(spec, positions, velocities, types, molecule, springs, ka)
-    scene.info = scene_info(scene, disk, wall, ka_disk, ka_wall, cutoff, disk_material,
-                            wall_material, velocity, len(row))
+    scene.info = scene_info(
+        scene,
+        disk,
+        wall,
+        ka_disk,
+        ka_wall,
+        cutoff,
+        disk_material,
+        wall_material,
+        velocity,
+        len(row),
+    )
     return scene
 
 
-def scene_info(scene: Scene, disk: Body, wall: Body, ka_disk: float, ka_wall: float,
-               cutoff: float, disk_material: dict, wall_material: dict, velocity: np.ndarray,
-               n_row: int) -> dict:
+def scene_info(
+    scene: Scene,
+    disk: Body,
+    wall: Body,
+    ka_disk: float,
+    ka_wall: float,
+    cutoff: float,
+    disk_material: dict,
+    wall_material: dict,
+    velocity: np.ndarray,
+    n_row: int,
+) -> dict:
     """Derived quantities that a run and its analysis need."""
     spec = scene.spec
     R = spec.radius
     in_disk = scene.molecule == DISK
     disk_xy = scene.positions[in_disk]
-    com = disk_xy.mean(axis=0)                    # all points have mass 1
+    com = disk_xy.mean(axis=0)  # all points have mass 1
     inertia = float(((disk_xy - com) ** 2).sum())
     lengths = scene.natural_lengths
     row = scene.positions[:n_row]
@@ -304,10 +365,17 @@ def scene_info(scene: Scene, disk: Body, wall: Body, ka_disk: float, ka_wall: fl
     a = spec.contact_a / R
     return {
         "spec": asdict(spec),
-        "units": {"length": "R", "velocity": "c", "time": "R/c", "mass": "m (one point)",
-                  "R": R, "c": 1.0, "m": 1.0,
-                  "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
-                              f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)"},
+        "units": {
+            "length": "R",
+            "velocity": "c",
+            "time": "R/c",
+            "mass": "m (one point)",
+            "R": R,
+            "c": 1.0,
+            "m": 1.0,
+            "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
+            f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
+        },
         "disk_material": disk_material,
         "wall_material": wall_material,
         "n_atoms": int(len(scene.positions)),

@@ -17,7 +17,7 @@ from . import bodies
 from .errors import InputError, require_choice, require_positive
 from .lammps_data import network_data_text
 
-GRIP = 1.5          # grips: the points within this many spacings of an end
+GRIP = 1.5  # grips: the points within this many spacings of an end
 TYPE_NAMES = {1: "strip", 2: "left grip", 3: "right grip"}
 
 
@@ -25,22 +25,25 @@ TYPE_NAMES = {1: "strip", 2: "left grip", 3: "right grip"}
 class StripSpec:
     lattice: str = "random"
     seed: int = 1
-    k2_over_k1: float = 3.0 / 7.0   # square lattice
-    angle_deg: float = 0.0          # lattice axes against the pulling direction
-    length: float = 80.0            # spacings
-    width: float = 24.0             # spacings
+    k2_over_k1: float = 3.0 / 7.0  # square lattice
+    angle_deg: float = 0.0  # lattice axes against the pulling direction
+    length: float = 80.0  # spacings
+    width: float = 24.0  # spacings
     kb_over_ka: float = 1e-3
 
     def validate(self) -> None:
         require_choice("lattice", self.lattice, bodies.LATTICES)
         require_positive("k2_over_k1", self.k2_over_k1)
         if not (self.length >= 4 * GRIP + 4 and self.width >= 4):
-            raise InputError(f"length must be >= {4 * GRIP + 4} and width >= 4 spacings, "
-                             f"got {self.length} x {self.width}")
+            raise InputError(
+                f"length must be >= {4 * GRIP + 4} and width >= 4 spacings, "
+                f"got {self.length} x {self.width}"
+            )
 
 
-def lattice_strip(lattice: str, length: float, width: float, angle_deg: float,
-                  k2_over_k1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def lattice_strip(
+    lattice: str, length: float, width: float, angle_deg: float, k2_over_k1: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Points, springs and stiffness of a triangular or square lattice strip.
 
     Springs come from the lattice: nearest neighbours (1), and for the square
@@ -113,8 +116,9 @@ def make_strip(spec: StripSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         points = points + [0.0, spec.width / 2.0]
         body = bodies.assemble(points, np.zeros(len(points), int), outline, outline, 1.0)
         return points, body.springs, body.stiffness
-    points, pairs, stiffness = lattice_strip(spec.lattice, spec.length, spec.width,
-                                             spec.angle_deg, spec.k2_over_k1)
+    points, pairs, stiffness = lattice_strip(
+        spec.lattice, spec.length, spec.width, spec.angle_deg, spec.k2_over_k1
+    )
     return drop_loose_points(points, pairs, stiffness)
 
 
@@ -141,9 +145,21 @@ def write_strip(spec: StripSpec, folder: Path | str) -> Path:
     types[points[:, 0] <= -half + GRIP] = 2
     types[points[:, 0] >= half - GRIP] = 3
     title = f"calibration strip: {asdict(spec)}"
-    (folder / "strip.data").write_text(network_data_text(
-        title, points, np.zeros_like(points), types, TYPE_NAMES, np.ones(len(points), int),
-        pairs, stiffness, spec.kb_over_ka, "class2", pad=1.0))
+    (folder / "strip.data").write_text(
+        network_data_text(
+            title,
+            points,
+            np.zeros_like(points),
+            types,
+            TYPE_NAMES,
+            np.ones(len(points), int),
+            pairs,
+            stiffness,
+            spec.kb_over_ka,
+            "class2",
+            pad=1.0,
+        )
+    )
     # Gauges in the middle third, away from the grips and the free edges.
     (folder / "strip.lmp").write_text(
         "# Strip geometry written by the builder (spacings)\n"
@@ -151,5 +167,6 @@ def write_strip(spec: StripSpec, folder: Path | str) -> Path:
         f"variable band      index 1.5\n"
         f"variable inner_y   index {spec.width / 4.0!r}\n"
         f"variable edge_y    index {spec.width / 2.0 - 1.5!r}\n"
-        f"variable length    index {spec.length!r}\n")
+        f"variable length    index {spec.length!r}\n"
+    )
     return folder

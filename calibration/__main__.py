@@ -26,18 +26,28 @@ def write_doc(table: dict) -> None:
         "mean over strips, sd the spread between strips. E = c^2 rho with rho the number "
         "density from Voronoi cells. Theory: exact for the triangular lattice, the continuum "
         "limit (MODEL.md's formula for nu) for the square lattice. Nonlinearity: the quadratic "
-        "term of stress against strain, relative to the linear one, at the largest strain.\n")
+        "term of stress against strain, relative to the linear one, at the largest strain.\n"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="python -m calibration",
-                           description="Stretch lattice strips and measure E, nu and c.")
+    parser = OneLineParser(
+        prog="python -m calibration", description="Stretch lattice strips and measure E, nu and c."
+    )
     commands = parser.add_subparsers(dest="command", required=True)
-    run = commands.add_parser("run", help="calibrate every lattice of the study: "
-                                          "calibration/materials.json and docs/materials.md")
+    run = commands.add_parser(
+        "run",
+        help="calibrate every lattice of the study: "
+        "calibration/materials.json and docs/materials.md",
+    )
     run.add_argument("--seeds", type=count(2), default=12, help="random strips (default: 12)")
-    run.add_argument("--square", type=positive_float, action="append", default=[],
-                     help="also calibrate a square lattice with this k2/k1 (repeatable)")
+    run.add_argument(
+        "--square",
+        type=positive_float,
+        action="append",
+        default=[],
+        help="also calibrate a square lattice with this k2/k1 (repeatable)",
+    )
     strip = commands.add_parser("strip", help="stretch one strip and print what it gives")
     strip.add_argument("--lattice", choices=("random", "triangular", "square"), default="random")
     strip.add_argument("--seed", type=count(0), default=1)
@@ -53,9 +63,11 @@ def main(argv: list[str] | None = None) -> int:
         else:
             spec = StripSpec(args.lattice, args.seed, args.k2_over_k1, args.angle)
             r = run_stretch(spec, Path(args.out))
-            print(f"c^2 = {r.c2:.6f} ka d^2/m  nu = {r.nu:.4f}  E = {r.e_modulus:.5f} ka  "
-                  f"(strip as a whole: c^2 = {r.c2_strip:.5f}, nu = {r.nu_gauge:.4f}; "
-                  f"nonlinearity {r.nonlinearity:.1e}, grip imbalance {r.imbalance:.1e})")
+            print(
+                f"c^2 = {r.c2:.6f} ka d^2/m  nu = {r.nu:.4f}  E = {r.e_modulus:.5f} ka  "
+                f"(strip as a whole: c^2 = {r.c2_strip:.5f}, nu = {r.nu_gauge:.4f}; "
+                f"nonlinearity {r.nonlinearity:.1e}, grip imbalance {r.imbalance:.1e})"
+            )
     except InputError as error:
         print(f"python -m calibration: error: {error}", file=sys.stderr)
         return 2

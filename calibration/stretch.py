@@ -29,16 +29,16 @@ class Stretch:
     """The settled states of one strip and the moduli fitted to them."""
 
     spec: StripSpec
-    strain_xx: np.ndarray     # of the inner part
+    strain_xx: np.ndarray  # of the inner part
     strain_yy: np.ndarray
-    gauge_xx: np.ndarray      # of the middle third, between bands and edges
+    gauge_xx: np.ndarray  # of the middle third, between bands and edges
     gauge_yy: np.ndarray
-    virial_xx: np.ndarray     # mean per-atom virial of the inner part
-    force: np.ndarray         # mean of the two grip forces (they balance)
-    imbalance: float          # largest |F_left + F_right| / |F_right|
-    kinetic: float            # largest kinetic energy left at a settled state
-    inner_density: float      # points per unit area (d^-2) in the inner part
-    line_density: float       # points per unit length of the strip
+    virial_xx: np.ndarray  # mean per-atom virial of the inner part
+    force: np.ndarray  # mean of the two grip forces (they balance)
+    imbalance: float  # largest |F_left + F_right| / |F_right|
+    kinetic: float  # largest kinetic energy left at a settled state
+    inner_density: float  # points per unit area (d^-2) in the inner part
+    line_density: float  # points per unit length of the strip
 
     @property
     def c2(self) -> float:
@@ -77,15 +77,36 @@ def linear_coefficient(x: np.ndarray, y: np.ndarray) -> float:
     return float(np.linalg.lstsq(design, y, rcond=None)[0][0])
 
 
-def run_stretch(spec: StripSpec, folder: Path | str, strain: float = 2e-4,
-                steps: int = 5) -> Stretch:
+def run_stretch(
+    spec: StripSpec, folder: Path | str, strain: float = 2e-4, steps: int = 5
+) -> Stretch:
     """Write the strip, stretch it with LAMMPS and read back the settled states."""
     folder = write_strip(spec, folder)
     log = folder / "log.lammps"
-    proc = subprocess.run(["lmp", "-in", str(DECK), "-var", "strip", str(folder),
-                           "-var", "strain", repr(strain), "-var", "nsteps", str(steps),
-                           "-log", str(log), "-screen", "none", "-nocite"],
-                          cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(
+        [
+            "lmp",
+            "-in",
+            str(DECK),
+            "-var",
+            "strip",
+            str(folder),
+            "-var",
+            "strain",
+            repr(strain),
+            "-var",
+            "nsteps",
+            str(steps),
+            "-log",
+            str(log),
+            "-screen",
+            "none",
+            "-nocite",
+        ],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     if proc.returncode != 0:
         errors = [line for line in log.read_text().splitlines() if line.startswith("ERROR")]
         raise RuntimeError(errors[0] if errors else proc.stderr[-500:])
@@ -98,8 +119,10 @@ def bulk_density(spec: StripSpec) -> float:
     points = make_strip(spec)[0]
     voronoi = Voronoi(points)
     inner = (np.abs(points[:, 0]) < spec.length / 6.0) & (np.abs(points[:, 1]) < spec.width / 4.0)
-    areas = [ConvexHull(voronoi.vertices[voronoi.regions[voronoi.point_region[i]]]).volume
-             for i in np.flatnonzero(inner)]
+    areas = [
+        ConvexHull(voronoi.vertices[voronoi.regions[voronoi.point_region[i]]]).volume
+        for i in np.flatnonzero(inner)
+    ]
     return float(1.0 / np.mean(areas))
 
 

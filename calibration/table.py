@@ -12,13 +12,17 @@ from pathlib import Path
 
 import numpy as np
 
-from builder.materials import (TABLE, square_poisson_ratio, square_ratio_for_poisson,
-                               square_wave_speed_factor)
+from builder.materials import (
+    TABLE,
+    square_poisson_ratio,
+    square_ratio_for_poisson,
+    square_wave_speed_factor,
+)
 from builder.strips import StripSpec
 
 from .stretch import ROOT, Stretch, run_stretch
 
-STUDY_POISSON = (0.1, 0.3)      # square lattices of the study, along their axes
+STUDY_POISSON = (0.1, 0.3)  # square lattices of the study, along their axes
 RANDOM_STRIP = dict(length=120.0, width=40.0)
 
 
@@ -59,13 +63,21 @@ def summarise(results: list[Stretch]) -> list[dict]:
         groups.setdefault((r.spec.lattice, ratio, r.spec.angle_deg), []).append(r)
     entries = []
     for (lattice, ratio, angle), runs in groups.items():
-        entry = {"lattice": lattice, "k2_over_k1": ratio, "angle_deg": angle,
-                 "samples": len(runs), "strip": [runs[0].spec.length, runs[0].spec.width]}
-        for name, values in (("c2", [r.c2 for r in runs]), ("nu", [r.nu for r in runs]),
-                             ("E", [r.e_modulus for r in runs]),
-                             ("density_d2", [r.inner_density for r in runs]),
-                             ("nu_gauge", [r.nu_gauge for r in runs]),
-                             ("c2_strip", [r.c2_strip for r in runs])):
+        entry = {
+            "lattice": lattice,
+            "k2_over_k1": ratio,
+            "angle_deg": angle,
+            "samples": len(runs),
+            "strip": [runs[0].spec.length, runs[0].spec.width],
+        }
+        for name, values in (
+            ("c2", [r.c2 for r in runs]),
+            ("nu", [r.nu for r in runs]),
+            ("E", [r.e_modulus for r in runs]),
+            ("density_d2", [r.inner_density for r in runs]),
+            ("nu_gauge", [r.nu_gauge for r in runs]),
+            ("c2_strip", [r.c2_strip for r in runs]),
+        ):
             values = np.array(values)
             sd = float(values.std(ddof=1)) if len(values) > 1 else 0.0
             entry[name] = float(values.mean())
@@ -81,16 +93,25 @@ def summarise(results: list[Stretch]) -> list[dict]:
 def provenance() -> dict:
     lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout.splitlines()
     version = next((line.split(" - ", 1)[1].strip() for line in lmp if " - " in line), "unknown")
-    head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
-                          capture_output=True, text=True).stdout.strip() or "unknown"
-    return {"command": "make calibrate", "lammps": version, "git_revision": head,
-            "date": str(date.today()),
-            "protocol": "5 steps of 2e-4 strain, critical viscous damping, settled over "
-                        "10 time constants of the slowest mode; quadratic fits"}
+    head = (
+        subprocess.run(
+            ["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True, text=True
+        ).stdout.strip()
+        or "unknown"
+    )
+    return {
+        "command": "make calibrate",
+        "lammps": version,
+        "git_revision": head,
+        "date": str(date.today()),
+        "protocol": "5 steps of 2e-4 strain, critical viscous damping, settled over "
+        "10 time constants of the slowest mode; quadratic fits",
+    }
 
 
-def calibrate(random_seeds: int = 12, extra_ratios: tuple[float, ...] = (),
-              path: Path = TABLE) -> dict:
+def calibrate(
+    random_seeds: int = 12, extra_ratios: tuple[float, ...] = (), path: Path = TABLE
+) -> dict:
     ratios = [square_ratio_for_poisson(nu) for nu in STUDY_POISSON] + list(extra_ratios)
     results = stretch_all(strip_specs(random_seeds, ratios))
     table = {**provenance(), "materials": summarise(results)}
@@ -100,6 +121,7 @@ def calibrate(random_seeds: int = 12, extra_ratios: tuple[float, ...] = (),
 
 def markdown(table: dict) -> str:
     """The table for docs/materials.md."""
+
     def value(entry: dict, key: str) -> str:
         if entry["samples"] > 1:
             return f"{entry[key]:.4f} +- {entry[key + '_se']:.4f} (sd {entry[key + '_sd']:.4f})"
@@ -108,12 +130,17 @@ def markdown(table: dict) -> str:
     def known(entry: dict, key: str, digits: int) -> str:
         return f"{entry['theory'][key]:.{digits}f}" if key in entry["theory"] else "-"
 
-    lines = ["| lattice | k2/k1 | pulled along | strips | c^2 (ka d^2/m) | nu | E (ka) "
-             "| theory c^2 | theory nu | nonlinearity |", "|" + "---|" * 10]
+    lines = [
+        "| lattice | k2/k1 | pulled along | strips | c^2 (ka d^2/m) | nu | E (ka) "
+        "| theory c^2 | theory nu | nonlinearity |",
+        "|" + "---|" * 10,
+    ]
     for e in table["materials"]:
         ratio = "-" if e["k2_over_k1"] is None else f"{e['k2_over_k1']:.4f}"
         direction = "x" if e["angle_deg"] == 0 else f"{e['angle_deg']:g} deg to the axes"
-        lines.append(f"| {e['lattice']} | {ratio} | {direction} | {e['samples']} "
-                     f"| {value(e, 'c2')} | {value(e, 'nu')} | {value(e, 'E')} "
-                     f"| {known(e, 'c2', 5)} | {known(e, 'nu', 4)} | {e['nonlinearity']:.1e} |")
+        lines.append(
+            f"| {e['lattice']} | {ratio} | {direction} | {e['samples']} "
+            f"| {value(e, 'c2')} | {value(e, 'nu')} | {value(e, 'E')} "
+            f"| {known(e, 'c2', 5)} | {known(e, 'nu', 4)} | {e['nonlinearity']:.1e} |"
+        )
     return "\n".join(lines)

@@ -29,11 +29,11 @@ ctypes.pythonapi.PyCapsule_GetPointer.argtypes = [ctypes.py_object, ctypes.c_cha
 def wrapper(handle):
     """The lammps object of the instance behind ``handle``, made once per instance."""
     address = ctypes.pythonapi.PyCapsule_GetPointer(handle, None)
-    running = sys.modules.get("runner.lammps_run")     # the lammps module's route
+    running = sys.modules.get("runner.lammps_run")  # the lammps module's route
     if running is not None and address in running.ACTIVE:
         return running.ACTIVE[address]
     if address not in _wrappers:
-        _wrappers.clear()               # a new instance: the old one has closed
+        _wrappers.clear()  # a new instance: the old one has closed
         _wrappers[address] = lammps(ptr=handle)
     return _wrappers[address]
 
@@ -58,6 +58,9 @@ def future_clear(handle, cutoff, slack, vibration, first, last):
     on_surface = disk & (types == DISK_SURFACE)
     row = slice(first - 1, last)
     margin = slack + vibration * (
-        disk_vibration(rest[on_surface], rest_centre, x[on_surface], v[on_surface], centre, velocity)
-        + wall_vibration(rest[row], x[row], v[row]))
+        disk_vibration(
+            rest[on_surface], rest_centre, x[on_surface], v[on_surface], centre, velocity
+        )
+        + wall_vibration(rest[row], x[row], v[row])
+    )
     return int(future_contact_free(x[on_surface], centre, velocity, omega, x[row], cutoff, margin))

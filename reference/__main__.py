@@ -15,8 +15,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="python -m reference",
-                           description="The reference implementation of the model (numpy).")
+    parser = OneLineParser(
+        prog="python -m reference", description="The reference implementation of the model (numpy)."
+    )
     commands = parser.add_subparsers(dest="command", required=True)
     run = commands.add_parser("run", help="run a scene folder (python -m builder scene)")
     run.add_argument("scene")
@@ -32,14 +33,17 @@ def main(argv: list[str] | None = None) -> int:
             for name in ("scene.data", "scene.json"):
                 if not (Path(args.scene) / name).is_file():
                     raise InputError(f"scene: no {name} in {args.scene}")
-            options = ReferenceOptions(dt=args.dt, integrator=args.integrator,
-                                       contact=args.contact, rule=args.rule)
+            options = ReferenceOptions(
+                dt=args.dt, integrator=args.integrator, contact=args.contact, rule=args.rule
+            )
             result = run_reference(args.scene, options)
             from runner.report import format_table
+
             print(format_table([result]))
         else:
             from runner.options import RunOptions
             from .validate import markdown, validate
+
             options = RunOptions()
             tables = validate(Path(args.out), options)
             text = markdown(tables)
@@ -51,7 +55,8 @@ def main(argv: list[str] | None = None) -> int:
                 "differences during contact of the disk's centre of mass, its velocity and L/I "
                 "(units R, c, c/R). The chaotic spread: the standard deviation of e and beta over "
                 "six copies of the scene with the disk's points moved by 1e-9 R. "
-                "See docs/validation.md.\n\n" + text + "\n")
+                "See docs/validation.md.\n\n" + text + "\n"
+            )
             print(text)
     except (InputError, Unstable) as error:
         print(f"python -m reference: error: {error}", file=sys.stderr)

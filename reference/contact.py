@@ -14,8 +14,8 @@ class InsideWall(RuntimeError):
 @dataclass
 class ContactForces:
     energy: float
-    on_points: np.ndarray     # (n_points, 2)
-    on_vertices: np.ndarray   # (n_vertices, 2)
+    on_points: np.ndarray  # (n_points, 2)
+    on_vertices: np.ndarray  # (n_vertices, 2)
 
 
 def closest_features(points: np.ndarray, vertices: np.ndarray):
@@ -73,8 +73,14 @@ def inside(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
     return (np.count_nonzero(straddles & (y_cross > py), axis=1) % 2) == 1
 
 
-def polyline_contact(points: np.ndarray, vertices: np.ndarray, a: float, v0: float,
-                     cutoff: float, rule: str = "lever") -> ContactForces:
+def polyline_contact(
+    points: np.ndarray,
+    vertices: np.ndarray,
+    a: float,
+    v0: float,
+    cutoff: float,
+    rule: str = "lever",
+) -> ContactForces:
     """Energy and forces of points repelled by the polyline through ``vertices``.
 
     E = v0 exp(-a l) for each point within ``cutoff`` of the polyline, l the
@@ -112,7 +118,9 @@ def polyline_contact(points: np.ndarray, vertices: np.ndarray, a: float, v0: flo
     near = dist < cutoff
     bad = near & ((dist == 0.0) | inside(points, vertices))
     if bad.any():
-        raise InsideWall(f"{np.count_nonzero(bad)} point(s) inside the wall, first: point {np.argmax(bad)}")
+        raise InsideWall(
+            f"{np.count_nonzero(bad)} point(s) inside the wall, first: point {np.argmax(bad)}"
+        )
     on_points = np.zeros_like(points)
     on_vertices = np.zeros_like(vertices)
     if not near.any():
@@ -149,8 +157,9 @@ def _gradient_forces(points, vertices, k, t, a, energy):
     signed = (s[:, 0] * u[:, 1] - s[:, 1] * u[:, 0]) / length
     sign = np.where(signed < 0.0, -1.0, 1.0)
     dl_du = sign[:, None] * np.stack([-s[:, 1], s[:, 0]], axis=1) / length[:, None]
-    dl_ds = sign[:, None] * (np.stack([u[:, 1], -u[:, 0]], axis=1) / length[:, None]
-                             - (signed / length**2)[:, None] * s)
+    dl_ds = sign[:, None] * (
+        np.stack([u[:, 1], -u[:, 0]], axis=1) / length[:, None] - (signed / length**2)[:, None] * s
+    )
     scale = (a * energy)[:, None]
     on_point, on_start, on_end = scale * dl_du, -scale * (dl_du + dl_ds), scale * dl_ds
 

@@ -13,14 +13,14 @@ import numpy as np
 class System:
     """Everything the dynamics needs, indexed by atom ID - 1."""
 
-    x: np.ndarray           # (n, 2) positions
-    v: np.ndarray           # (n, 2) velocities
-    mass: np.ndarray        # (n,)
-    types: np.ndarray       # (n,)
-    molecule: np.ndarray    # (n,)
-    bonds: np.ndarray       # (m, 2) atom indices
-    r0: np.ndarray          # (m,) natural lengths
-    k2: np.ndarray          # (m,) class2 coefficients: E = k2 dr^2 + k3 dr^3 + k4 dr^4
+    x: np.ndarray  # (n, 2) positions
+    v: np.ndarray  # (n, 2) velocities
+    mass: np.ndarray  # (n,)
+    types: np.ndarray  # (n,)
+    molecule: np.ndarray  # (n,)
+    bonds: np.ndarray  # (m, 2) atom indices
+    r0: np.ndarray  # (m,) natural lengths
+    k2: np.ndarray  # (m,) class2 coefficients: E = k2 dr^2 + k3 dr^3 + k4 dr^4
     k3: np.ndarray
     k4: np.ndarray
 
@@ -72,15 +72,25 @@ def read_data(path: Path | str) -> System:
         v[vel[:, 0].astype(int) - 1] = vel[:, 1:3]
     coeffs = np.array([r.split() for r in sections["Bond Coeffs"]], float)
     coeffs = coeffs[np.argsort(coeffs[:, 0])]
-    if coeffs.shape[1] == 4:                # harmonic/quartic: r0 ka kb, class2 with ka/2, 0, kb/4
+    if coeffs.shape[1] == 4:  # harmonic/quartic: r0 ka kb, class2 with ka/2, 0, kb/4
         zero = np.zeros(len(coeffs))
-        coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 1], coeffs[:, 2] / 2.0, zero,
-                                  coeffs[:, 3] / 4.0])
-    elif coeffs.shape[1] == 3:              # harmonic: K r0, i.e. class2 with K3 = K4 = 0
+        coeffs = np.column_stack(
+            [coeffs[:, 0], coeffs[:, 1], coeffs[:, 2] / 2.0, zero, coeffs[:, 3] / 4.0]
+        )
+    elif coeffs.shape[1] == 3:  # harmonic: K r0, i.e. class2 with K3 = K4 = 0
         zero = np.zeros(len(coeffs))
         coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 2], coeffs[:, 1], zero, zero])
     bonds = np.array([r.split() for r in sections["Bonds"]], int)
     kind = bonds[:, 1] - 1
-    return System(x=atoms[:, 3:5].copy(), v=v, mass=np.array([masses[t] for t in types]),
-                  types=types, molecule=atoms[:, 1].astype(int), bonds=bonds[:, 2:4] - 1,
-                  r0=coeffs[kind, 1], k2=coeffs[kind, 2], k3=coeffs[kind, 3], k4=coeffs[kind, 4])
+    return System(
+        x=atoms[:, 3:5].copy(),
+        v=v,
+        mass=np.array([masses[t] for t in types]),
+        types=types,
+        molecule=atoms[:, 1].astype(int),
+        bonds=bonds[:, 2:4] - 1,
+        r0=coeffs[kind, 1],
+        k2=coeffs[kind, 2],
+        k3=coeffs[kind, 3],
+        k4=coeffs[kind, 4],
+    )

@@ -35,11 +35,11 @@ class Model:
     a: float
     v0: float
     cutoff: float
-    disk_surface: np.ndarray     # indices of the disk's surface points
-    wall_row: np.ndarray         # indices of the wall's surface polyline, in order
-    contact: str = "segment"     # segment or pair
+    disk_surface: np.ndarray  # indices of the disk's surface points
+    wall_row: np.ndarray  # indices of the wall's surface polyline, in order
+    contact: str = "segment"  # segment or pair
     rule: str = "lever"
-    compiled: bool = True        # springs by the C loop when it is built
+    compiled: bool = True  # springs by the C loop when it is built
     incidence: sparse.csr_matrix = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -62,8 +62,9 @@ class Model:
         if self._loop is not None:
             x = np.ascontiguousarray(x, dtype=float)
             force = np.empty_like(x)
-            energy = self._loop(len(s.bonds), *self._pointers, x.ctypes.data, len(x),
-                                force.ctypes.data)
+            energy = self._loop(
+                len(s.bonds), *self._pointers, x.ctypes.data, len(x), force.ctypes.data
+            )
             return force, energy
         d = self.incidence @ x
         r = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
@@ -91,8 +92,9 @@ class Model:
         disk_points = self.disk_surface[near]
         wall_points = self.wall_row[first:last]
         if self.contact == "segment":
-            result = polyline_contact(x[disk_points], x[wall_points], self.a, self.v0,
-                                      self.cutoff, self.rule)
+            result = polyline_contact(
+                x[disk_points], x[wall_points], self.a, self.v0, self.cutoff, self.rule
+            )
             force[disk_points] = result.on_points
             force[wall_points] = result.on_vertices
             return force, result.energy

@@ -42,7 +42,9 @@ class ReferenceOptions:
         if not self.dt > 0:
             raise InputError(f"dt must be > 0, got {self.dt}")
         if self.integrator not in SCHEMES:
-            raise InputError(f"integrator must be one of {', '.join(SCHEMES)}; got {self.integrator!r}")
+            raise InputError(
+                f"integrator must be one of {', '.join(SCHEMES)}; got {self.integrator!r}"
+            )
         if self.contact not in ("segment", "pair"):
             raise InputError(f"contact must be one of segment, pair; got {self.contact!r}")
         if self.check % self.every:
@@ -54,9 +56,16 @@ def load_model(folder: Path, options: ReferenceOptions) -> Model:
     system = read_data(folder / "scene.data")
     first, last = scene["wall_row_tags"]
     contact = scene["contact"]
-    return Model(system=system, a=contact["a"], v0=contact["V0"], cutoff=contact["cutoff"],
-                 disk_surface=np.flatnonzero(system.types == DISK_SURFACE),
-                 wall_row=np.arange(first - 1, last), contact=options.contact, rule=options.rule)
+    return Model(
+        system=system,
+        a=contact["a"],
+        v0=contact["V0"],
+        cutoff=contact["cutoff"],
+        disk_surface=np.flatnonzero(system.types == DISK_SURFACE),
+        wall_row=np.arange(first - 1, last),
+        contact=options.contact,
+        rule=options.rule,
+    )
 
 
 class Observer:
@@ -92,9 +101,14 @@ class Observer:
         d = x[s.bonds[:, 1]] - x[i]
         dr = np.sqrt((d * d).sum(axis=1)) - s.r0
         e_bond = dr * dr * (s.k2 + dr * (s.k3 + dr * s.k4))
-        in_disk = s.molecule[i] == DISK                       # springs never cross bodies
-        values = (ke[self.disk].sum(), e_bond[in_disk].sum(), ke[self.wall].sum(),
-                  e_bond[~in_disk].sum(), e_contact)
+        in_disk = s.molecule[i] == DISK  # springs never cross bodies
+        values = (
+            ke[self.disk].sum(),
+            e_bond[in_disk].sum(),
+            ke[self.wall].sum(),
+            e_bond[~in_disk].sum(),
+            e_contact,
+        )
         return f"{t:.10g} " + " ".join(repr(float(value)) for value in values) + "\n"
 
     def finished(self, x) -> bool:
@@ -170,10 +184,14 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
 
     start = time.perf_counter()
     force, contact, e_contact = stepper.forces(x)
-    series = ["# step time x y vx vy Lz Izz omega_z fx fy pe_contact\n",
-              observe.row(0, 0.0, x, v, contact, e_contact)]
-    energies = ["# time ke_disk pe_disk ke_wall pe_wall pe_contact\n",
-                observe.energies(0.0, x, v, e_contact)]
+    series = [
+        "# step time x y vx vy Lz Izz omega_z fx fy pe_contact\n",
+        observe.row(0, 0.0, x, v, contact, e_contact),
+    ]
+    energies = [
+        "# time ke_disk pe_disk ke_wall pe_wall pe_contact\n",
+        observe.energies(0.0, x, v, e_contact),
+    ]
     touched, step = False, 0
     while True:
         try:
@@ -219,8 +237,12 @@ def run_reference(folder: Path | str, options: ReferenceOptions) -> dict:
     for name in ("series.dat", "energy.dat", "run.json", "result.json"):
         (folder / name).unlink(missing_ok=True)
     seconds = simulate(folder, options)
-    run = {"options": {**asdict(options), "springs": "class2", "route": "reference", "nprocs": 1},
-           "wall_seconds": seconds, "lammps_version": VERSION, "git_revision": git_revision()}
+    run = {
+        "options": {**asdict(options), "springs": "class2", "route": "reference", "nprocs": 1},
+        "wall_seconds": seconds,
+        "lammps_version": VERSION,
+        "git_revision": git_revision(),
+    }
     write_json_atomically(run, folder / "run.json")
     result = analyse_run(folder)
     if any(isinstance(v, float) and not math.isfinite(v) for v in result.values()):

@@ -33,14 +33,18 @@ from runner.options import RunOptions
 from .run import ReferenceOptions, run_reference
 
 LATTICES = {"random": {}, "triangular": {}, "square": {"k2_over_k1": square_ratio_for_poisson(0.3)}}
-ANGLES = (5.7, 45.0, 80.4)                      # near-normal, middle, grazing
+ANGLES = (5.7, 45.0, 80.4)  # near-normal, middle, grazing
 REFERENCE = ReferenceOptions(integrator="suzuki", dt=1e-3)
 
 
 def scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
-    return {f"{lattice}_g{gamma:g}": SceneSpec(lattice=lattice, gamma_deg=gamma, n_disk=n_disk,
-                                               roughness=roughness, **extra)
-            for lattice, extra in LATTICES.items() for gamma in ANGLES}
+    return {
+        f"{lattice}_g{gamma:g}": SceneSpec(
+            lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra
+        )
+        for lattice, extra in LATTICES.items()
+        for gamma in ANGLES
+    }
 
 
 def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REFERENCE) -> dict:
@@ -65,8 +69,11 @@ def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REF
     if done.exists():
         run = json.loads((folder / "run.json").read_text())
         scene = json.loads((folder / "scene.json").read_text())
-        if run["options"]["dt"] == options.dt and run["options"]["integrator"] == options.integrator \
-                and scene["spec"] == asdict(spec):
+        if (
+            run["options"]["dt"] == options.dt
+            and run["options"]["integrator"] == options.integrator
+            and scene["spec"] == asdict(spec)
+        ):
             return json.loads(done.read_text())
     write_scene(build_scene(spec), folder)
     return run_reference(folder, options)
@@ -76,9 +83,13 @@ def _reference_job(job):
     return reference_run(*job)
 
 
-
-def reference_runs(specs: dict[str, SceneSpec], out: Path, workers: int = 2,
-                   options: ReferenceOptions = REFERENCE, label: str = "reference") -> dict[str, dict]:
+def reference_runs(
+    specs: dict[str, SceneSpec],
+    out: Path,
+    workers: int = 2,
+    options: ReferenceOptions = REFERENCE,
+    label: str = "reference",
+) -> dict[str, dict]:
     jobs = [(spec, out / name / label, options) for name, spec in specs.items()]
     with ProcessPoolExecutor(workers) as pool:
         return dict(zip(specs, pool.map(_reference_job, jobs)))
@@ -107,27 +118,41 @@ def trajectory_difference(lammps: Path, reference: Path) -> dict[str, float]:
     t = ours["time"][during]
 
     def worst(*columns):
-        return max(float(np.abs(np.interp(t, theirs["time"], theirs[c]) - ours[c][during]).max())
-                   for c in columns)
+        return max(
+            float(np.abs(np.interp(t, theirs["time"], theirs[c]) - ours[c][during]).max())
+            for c in columns
+        )
 
     spin = lambda s: s["Lz"] / s["Izz"]  # noqa: E731
-    return {"position": worst("x", "y"), "velocity": worst("vx", "vy"),
-            "omega": float(np.abs(np.interp(t, theirs["time"], spin(theirs)) - spin(ours)[during]).max())}
+    return {
+        "position": worst("x", "y"),
+        "velocity": worst("vx", "vy"),
+        "omega": float(
+            np.abs(np.interp(t, theirs["time"], spin(theirs)) - spin(ours)[during]).max()
+        ),
+    }
 
 
-def compare(spec: SceneSpec, folder: Path, options: RunOptions, reference: dict,
-            reference_folder: Path) -> dict:
+def compare(
+    spec: SceneSpec, folder: Path, options: RunOptions, reference: dict, reference_folder: Path
+) -> dict:
     result = run_scene(write_scene(build_scene(spec), folder), options)
-    row = {"e": result["e"], "beta": result["beta"],
-           "de": result["e"] - reference["e"], "dbeta": result["beta"] - reference["beta"],
-           "energy_drift": result["energy_drift"], "wall_seconds": result["wall_seconds"],
-           "steps": result["steps"]}
+    row = {
+        "e": result["e"],
+        "beta": result["beta"],
+        "de": result["e"] - reference["e"],
+        "dbeta": result["beta"] - reference["beta"],
+        "energy_drift": result["energy_drift"],
+        "wall_seconds": result["wall_seconds"],
+        "steps": result["steps"],
+    }
     row.update(trajectory_difference(folder, reference_folder))
     return row
 
 
-def perturbed_spread(spec: SceneSpec, folder: Path, options: RunOptions, copies: int = 6,
-                     size: float = 1e-9) -> dict:
+def perturbed_spread(
+    spec: SceneSpec, folder: Path, options: RunOptions, copies: int = 6, size: float = 1e-9
+) -> dict:
     """Spread of e and beta over copies of a scene whose disk points are moved by
     ``size`` R in random directions: how far apart chaos takes trajectories."""
     scene = build_scene(spec)
@@ -142,8 +167,12 @@ def perturbed_spread(spec: SceneSpec, folder: Path, options: RunOptions, copies:
         result = run_scene(write_scene(moved, folder / f"copy{k}"), options)
         values.append((result["e"], result["beta"]))
     values = np.array(values)
-    return {"e_sd": float(values[:, 0].std(ddof=1)), "beta_sd": float(values[:, 1].std(ddof=1)),
-            "e_mean": float(values[:, 0].mean()), "beta_mean": float(values[:, 1].mean())}
+    return {
+        "e_sd": float(values[:, 0].std(ddof=1)),
+        "beta_sd": float(values[:, 1].std(ddof=1)),
+        "e_mean": float(values[:, 0].mean()),
+        "beta_mean": float(values[:, 1].mean()),
+    }
 
 
 def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6) -> dict:
@@ -168,9 +197,16 @@ def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6)
     """
     smooth_specs = scenes(n_disk, roughness=0.0)
     smooth_refs = reference_runs(smooth_specs, out / "smooth")
-    smooth = {name: compare(spec, out / "smooth" / name / "lammps", options, smooth_refs[name],
-                            out / "smooth" / name / "reference")
-              for name, spec in smooth_specs.items()}
+    smooth = {
+        name: compare(
+            spec,
+            out / "smooth" / name / "lammps",
+            options,
+            smooth_refs[name],
+            out / "smooth" / name / "reference",
+        )
+        for name, spec in smooth_specs.items()
+    }
     for name in smooth:
         smooth[name]["reference"] = smooth_refs[name]
     rough_specs = scenes(n_disk)
@@ -179,8 +215,13 @@ def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6)
     converged = reference_runs(rough_specs, out / "rough")
     rough = {}
     for name, spec in rough_specs.items():
-        row = compare(spec, out / "rough" / name / "lammps", options, twins[name],
-                      out / "rough" / name / "reference_verlet")
+        row = compare(
+            spec,
+            out / "rough" / name / "lammps",
+            options,
+            twins[name],
+            out / "rough" / name / "reference_verlet",
+        )
         row["converged_de"] = row["e"] - converged[name]["e"]
         row["converged_dbeta"] = row["beta"] - converged[name]["beta"]
         row.update(perturbed_spread(spec, out / "rough" / name / "perturbed", options, copies))
@@ -189,18 +230,31 @@ def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6)
 
 
 def markdown(tables: dict) -> str:
-    smooth = ["| scene | e_ref | beta_ref | e - e_ref | beta - beta_ref | centre | velocity | omega |",
-              "|" + "---|" * 8]
+    smooth = [
+        "| scene | e_ref | beta_ref | e - e_ref | beta - beta_ref | centre | velocity | omega |",
+        "|" + "---|" * 8,
+    ]
     for name, row in tables["smooth"].items():
         ref = row["reference"]
-        smooth.append(f"| {name} | {ref['e']:.5f} | {ref['beta']:+.5f} | {row['de']:+.1e} "
-                      f"| {row['dbeta']:+.1e} | {row['position']:.1e} | {row['velocity']:.1e} "
-                      f"| {row['omega']:.1e} |")
-    rough = ["| scene | e | beta | vs reference Verlet, same step: e, beta | vs converged "
-             "reference: e, beta | chaotic spread: sd e, sd beta | energy drift |", "|" + "---|" * 7]
+        smooth.append(
+            f"| {name} | {ref['e']:.5f} | {ref['beta']:+.5f} | {row['de']:+.1e} "
+            f"| {row['dbeta']:+.1e} | {row['position']:.1e} | {row['velocity']:.1e} "
+            f"| {row['omega']:.1e} |"
+        )
+    rough = [
+        "| scene | e | beta | vs reference Verlet, same step: e, beta | vs converged "
+        "reference: e, beta | chaotic spread: sd e, sd beta | energy drift |",
+        "|" + "---|" * 7,
+    ]
     for name, row in tables["rough"].items():
-        rough.append(f"| {name} | {row['e']:.4f} | {row['beta']:+.4f} | {row['de']:+.0e}, "
-                     f"{row['dbeta']:+.0e} | {row['converged_de']:+.1e}, {row['converged_dbeta']:+.1e} "
-                     f"| {row['e_sd']:.1e}, {row['beta_sd']:.1e} | {row['energy_drift']:+.1e} |")
-    return ("## Smooth surfaces: accuracy\n\n" + "\n".join(smooth)
-            + "\n\n## Rough surfaces: implementation and chaos\n\n" + "\n".join(rough))
+        rough.append(
+            f"| {name} | {row['e']:.4f} | {row['beta']:+.4f} | {row['de']:+.0e}, "
+            f"{row['dbeta']:+.0e} | {row['converged_de']:+.1e}, {row['converged_dbeta']:+.1e} "
+            f"| {row['e_sd']:.1e}, {row['beta_sd']:.1e} | {row['energy_drift']:+.1e} |"
+        )
+    return (
+        "## Smooth surfaces: accuracy\n\n"
+        + "\n".join(smooth)
+        + "\n\n## Rough surfaces: implementation and chaos\n\n"
+        + "\n".join(rough)
+    )

@@ -16,8 +16,14 @@ from .lammps_run import LammpsError, lammps_version, run_lmp, run_python
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN_OUTPUTS = ("log.lammps", "series.dat", "energy.dat", "dump.lammpstrj", "run.json",
-               "result.json")
+RUN_OUTPUTS = (
+    "log.lammps",
+    "series.dat",
+    "energy.dat",
+    "dump.lammpstrj",
+    "run.json",
+    "result.json",
+)
 
 
 def git_revision() -> str:
@@ -29,10 +35,19 @@ def git_revision() -> str:
         A 12-digit abbreviated commit hash, or ``unknown`` outside a git clone.
     """
     try:
-        head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
-                              capture_output=True, text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                               cwd=ROOT, capture_output=True, text=True).stdout.strip()
+        head = subprocess.run(
+            ["git", "rev-parse", "--short=12", "HEAD"],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
         return head + ("+dirty" if dirty else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
@@ -42,12 +57,15 @@ def check_folder(folder: Path | str) -> None:
     """A run folder's path must be one word to LAMMPS."""
     folder = Path(folder).resolve()
     if any(c.isspace() for c in str(folder)):
-        raise InputError(f"scene: the folder's path must not contain spaces (LAMMPS splits "
-                         f"commands at them): {folder}")
+        raise InputError(
+            f"scene: the folder's path must not contain spaces (LAMMPS splits "
+            f"commands at them): {folder}"
+        )
 
 
-def run_scene(folder: Path | str, options: RunOptions,
-              deck_overrides: dict[str, str] | None = None) -> dict:
+def run_scene(
+    folder: Path | str, options: RunOptions, deck_overrides: dict[str, str] | None = None
+) -> dict:
     """Run the scene in ``folder`` (scene.data, scene.lmp, scene.json) and analyse it.
 
     Outputs go into the same folder; result.json is written last and
@@ -82,11 +100,14 @@ def run_scene(folder: Path | str, options: RunOptions,
     check_folder(folder)
     for name in ("scene.data", "scene.lmp", "scene.json"):
         if not (folder / name).is_file():
-            raise InputError(f"scene: no {name} in {folder} (write one with python -m builder scene)")
+            raise InputError(
+                f"scene: no {name} in {folder} (write one with python -m builder scene)"
+            )
     scene = json.loads((folder / "scene.json").read_text())
     if scene.get("springs", "class2") != options.springs:
-        raise InputError(f"springs must match the data file ({scene.get('springs')}), "
-                         f"got {options.springs}")
+        raise InputError(
+            f"springs must match the data file ({scene.get('springs')}), got {options.springs}"
+        )
     for name in RUN_OUTPUTS:
         (folder / name).unlink(missing_ok=True)
 
@@ -99,9 +120,13 @@ def run_scene(folder: Path | str, options: RunOptions,
     else:
         seconds = run_python(variables, log)
 
-    run = {"options": options.as_dict(), "deck_overrides": deck_overrides or {},
-           "wall_seconds": seconds, "lammps_version": lammps_version(log),
-           "git_revision": git_revision()}
+    run = {
+        "options": options.as_dict(),
+        "deck_overrides": deck_overrides or {},
+        "wall_seconds": seconds,
+        "lammps_version": lammps_version(log),
+        "git_revision": git_revision(),
+    }
     write_json_atomically(run, folder / "run.json")
     result = analyse_run(folder)
     bad = [k for k, v in result.items() if isinstance(v, float) and not math.isfinite(v)]
@@ -130,8 +155,7 @@ def run_impact(spec: SceneSpec, folder: Path | str, options: RunOptions) -> dict
     """
     spec.validate()
     options.validate()
-    check_folder(folder)                # before anything is written
+    check_folder(folder)  # before anything is written
     folder = Path(folder)
     write_scene(build_scene(spec), folder, options.springs)
     return run_scene(folder, options)
-

@@ -72,7 +72,9 @@ def mpi_launcher(nprocs: int) -> list[str]:
     if os.environ.get("IMPACT_MPIRUN"):
         return os.environ["IMPACT_MPIRUN"].split()
     if shutil.which("mpirun") is None:
-        raise LammpsError("mpirun not found: install openmpi-bin (make setup) to run on several ranks")
+        raise LammpsError(
+            "mpirun not found: install openmpi-bin (make setup) to run on several ranks"
+        )
     # By name, not by its full path: Open MPI's mpirun called as /usr/bin/mpirun
     # acts as if given --prefix /usr and puts /usr/bin first on the ranks' PATH,
     # so lmp's embedded Python would start from Debian's python3, not ours.
@@ -127,8 +129,13 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
         If lmp fails; the message is LAMMPS's ERROR line.
     """
     start = time.perf_counter()
-    proc = subprocess.run(mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
-                          cwd=ROOT, capture_output=True, text=True, env=mpi_environment())
+    proc = subprocess.run(
+        mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        env=mpi_environment(),
+    )
     elapsed = time.perf_counter() - start
     if proc.returncode != 0:
         tail = (proc.stderr.strip() or proc.stdout.strip()).splitlines()[-1:] or ["no output"]
@@ -180,9 +187,10 @@ def run_python(variables: dict[str, str], log: Path) -> float:
 # the deck's Python callbacks (decks/future_clear.py) use them instead of
 # making wrappers of their own.
 ACTIVE: dict[int, object] = {}
-STYLE_LIBRARIES = {("pair", "polyline/exp"): ("libpolyline_exp.so", "polyline_exp_register"),
-                   ("bond", "harmonic/quartic"): ("libharmonic_quartic.so",
-                                                  "harmonic_quartic_register")}
+STYLE_LIBRARIES = {
+    ("pair", "polyline/exp"): ("libpolyline_exp.so", "polyline_exp_register"),
+    ("bond", "harmonic/quartic"): ("libharmonic_quartic.so", "harmonic_quartic_register"),
+}
 
 
 def register_styles(lmp) -> None:

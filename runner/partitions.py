@@ -23,7 +23,14 @@ from pathlib import Path
 from analysis.result import analyse_run, write_json_atomically
 
 from .impact import git_revision
-from .lammps_run import ROOT, LammpsError, lammps_error, lammps_version, mpi_environment, mpi_launcher
+from .lammps_run import (
+    ROOT,
+    LammpsError,
+    lammps_error,
+    lammps_version,
+    mpi_environment,
+    mpi_launcher,
+)
 from .stopping import as_worker
 from .study import Progress, Study, mark_failed, prune, state
 
@@ -45,18 +52,24 @@ def run_group(command: list[str], **kwargs) -> subprocess.CompletedProcess:
     """subprocess.run in a new process group, which is ended whole if this
     process is interrupted (subprocess.run would SIGKILL only mpirun, whose
     ranks would run on)."""
-    with subprocess.Popen(command, start_new_session=True, stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, text=True, **kwargs) as process:
+    with subprocess.Popen(
+        command,
+        start_new_session=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        **kwargs,
+    ) as process:
         try:
             stdout, stderr = process.communicate()
         except BaseException:
-            os.killpg(process.pid, signal.SIGTERM)       # mpirun passes it on to the ranks
+            os.killpg(process.pid, signal.SIGTERM)  # mpirun passes it on to the ranks
             try:
                 process.wait(timeout=5)
             except subprocess.TimeoutExpired:
                 pass
             try:
-                os.killpg(process.pid, signal.SIGKILL)   # whatever is left of the group
+                os.killpg(process.pid, signal.SIGKILL)  # whatever is left of the group
             except ProcessLookupError:
                 pass
             process.wait()
@@ -71,16 +84,32 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
     batch.mkdir(parents=True)
     for k, job in enumerate(jobs, start=1):
         (batch / str(k)).symlink_to(Path(job["folder"]).resolve())
-    partitions = min(partitions, len(jobs))      # a universe loop needs a job per partition
+    partitions = min(partitions, len(jobs))  # a universe loop needs a job per partition
     variables = study.options.deck_variables()
-    command = mpi_launcher(partitions) + ["lmp", "-partition", f"{partitions}x1",
-                                          "-in", str(SWEEP), "-plog", str(batch / "log"),
-                                          "-log", "none", "-pscreen", "none", "-nocite",
-                                          "-var", "batch", str(batch), "-var", "count", str(len(jobs))]
+    command = mpi_launcher(partitions) + [
+        "lmp",
+        "-partition",
+        f"{partitions}x1",
+        "-in",
+        str(SWEEP),
+        "-plog",
+        str(batch / "log"),
+        "-log",
+        "none",
+        "-pscreen",
+        "none",
+        "-nocite",
+        "-var",
+        "batch",
+        str(batch),
+        "-var",
+        "count",
+        str(len(jobs)),
+    ]
     for name, value in variables.items():
         command += ["-var", name, value]
     launched = run_group(command, cwd=ROOT, env=mpi_environment())
-    (ROOT / "tmp.lammps.variable").unlink(missing_ok=True)    # the universe loop's counter
+    (ROOT / "tmp.lammps.variable").unlink(missing_ok=True)  # the universe loop's counter
     logs = sorted(batch.glob("log.*"))
     version = lammps_version(logs[0]) if logs else "unknown"
     errors = [e for e in (lammps_error(log, "") for log in logs) if e]
@@ -90,25 +119,32 @@ def run_batch(study: Study, jobs: list[dict], partitions: int, batch: Path) -> i
         settled += finished(folder) or (folder / "series.dat").exists()
         if finished(folder):
             clock = [float(t) for t in (folder / "clock.txt").read_text().split()]
-            run = {"options": study.options.as_dict(), "wall_seconds": clock[1] - clock[0],
-                   "lammps_version": version, "git_revision": git_revision(),
-                   "partitions": partitions}
+            run = {
+                "options": study.options.as_dict(),
+                "wall_seconds": clock[1] - clock[0],
+                "lammps_version": version,
+                "git_revision": git_revision(),
+                "partitions": partitions,
+            }
             write_json_atomically(run, folder / "run.json")
             write_json_atomically(analyse_run(folder), folder / "result.json")
             prune(folder)
-        elif (folder / "series.dat").exists():        # it was running when the job ended
+        elif (folder / "series.dat").exists():  # it was running when the job ended
             mark_failed(job, errors[0] if errors else "the MPI job ended during this impact")
-        else:                                         # never started: next batch
+        else:  # never started: next batch
             shutil.rmtree(folder, ignore_errors=True)
     if not settled:
-        raise LammpsError("the MPI job ended before any impact started: "
-                           + (errors[0] if errors else launched.stderr.strip()[-2000:]))
+        raise LammpsError(
+            "the MPI job ended before any impact started: "
+            + (errors[0] if errors else launched.stderr.strip()[-2000:])
+        )
     shutil.rmtree(batch, ignore_errors=True)
     return settled
 
 
-def run_study_partitions(study: Study, partitions: int, retry_failed: bool = False,
-                         batch_size: int = 16) -> dict:
+def run_study_partitions(
+    study: Study, partitions: int, retry_failed: bool = False, batch_size: int = 16
+) -> dict:
     """Run every unfinished impact of the study on ``partitions`` LAMMPS partitions."""
     jobs = study.prepare(retry_failed)
     progress = Progress(len(jobs), sum(state(j) != "pending" for j in jobs))
@@ -117,7 +153,7 @@ def run_study_partitions(study: Study, partitions: int, retry_failed: bool = Fal
     # the block, however, terminates the builder.
     with mp.get_context("fork").Pool(1, initializer=as_worker) as builder:
         while todo := [j for j in jobs if state(j) == "pending"]:
-            batches = [todo[i:i + size] for i in range(0, len(todo), size)]
+            batches = [todo[i : i + size] for i in range(0, len(todo), size)]
             building = builder.apply_async(build_scenes, (study, batches[0]))
             for k, batch in enumerate(batches):
                 building.get()

@@ -44,30 +44,38 @@ def _work(function, jobs, connection, parent: int):
             for index in indices:
                 try:
                     message = ("done", index, function(jobs[index]))
-                except Exception as error:      # a Python error in the job: report, go on
+                except Exception as error:  # a Python error in the job: report, go on
                     message = ("error", index, f"{type(error).__name__}: {error}")
                 connection.send(message)
-    except (BrokenPipeError, EOFError):         # the parent is gone
+    except (BrokenPipeError, EOFError):  # the parent is gone
         return
 
 
 class _Worker:
     def __init__(self, context, function, jobs):
         self.connection, child = context.Pipe()
-        self.process = context.Process(target=_work, args=(function, jobs, child, os.getpid()),
-                                       daemon=True)
+        self.process = context.Process(
+            target=_work, args=(function, jobs, child, os.getpid()), daemon=True
+        )
         self.process.start()
         child.close()
-        self.todo: list[int] = []           # the group's jobs not yet reported
+        self.todo: list[int] = []  # the group's jobs not yet reported
 
     def give(self, indices: list[int]) -> None:
         self.todo = list(indices)
         self.connection.send(self.todo)
 
 
-def run_jobs(function: Callable, jobs: Sequence, groups: Sequence[Sequence[int]], workers: int,
-             on_done: Callable[[int, object], None], on_failed: Callable[[int, str], None],
-             on_progress: Callable[[int], None] | None = None, progress_every: float = 10.0) -> None:
+def run_jobs(
+    function: Callable,
+    jobs: Sequence,
+    groups: Sequence[Sequence[int]],
+    workers: int,
+    on_done: Callable[[int, object], None],
+    on_failed: Callable[[int, str], None],
+    on_progress: Callable[[int], None] | None = None,
+    progress_every: float = 10.0,
+) -> None:
     """Run ``function(jobs[i])`` for every job, a group at a time per worker;
     call on_done(i, value) or on_failed(i, message) for each, in this process."""
     context = mp.get_context("fork")
@@ -91,8 +99,10 @@ def run_jobs(function: Callable, jobs: Sequence, groups: Sequence[Sequence[int]]
             feed(running[-1])
         last = time.monotonic()
         while remaining:
-            ready = wait([w.connection for w in running] + [w.process.sentinel for w in running],
-                         timeout=progress_every)
+            ready = wait(
+                [w.connection for w in running] + [w.process.sentinel for w in running],
+                timeout=progress_every,
+            )
             for worker in list(running):
                 if worker.connection in ready or worker.process.sentinel in ready:
                     try:
@@ -103,10 +113,14 @@ def run_jobs(function: Callable, jobs: Sequence, groups: Sequence[Sequence[int]]
                     if not worker.process.is_alive():
                         worker.process.join()
                         running.remove(worker)
-                        if worker.todo:             # the job it died in; the rest go back
+                        if worker.todo:  # the job it died in; the rest go back
                             crashed, *rest = worker.todo
-                            report(worker, "error", crashed,
-                                   f"the run ended its process (exit status {worker.process.exitcode})")
+                            report(
+                                worker,
+                                "error",
+                                crashed,
+                                f"the run ended its process (exit status {worker.process.exitcode})",
+                            )
                             if rest:
                                 queued.appendleft(rest)
                         if queued:
@@ -121,7 +135,7 @@ def run_jobs(function: Callable, jobs: Sequence, groups: Sequence[Sequence[int]]
             worker.connection.send(None)
             worker.process.join(timeout=5)
     finally:
-        _stop(running)     # whatever ended the loop: no worker outlives it
+        _stop(running)  # whatever ended the loop: no worker outlives it
     if on_progress:
         on_progress(sum(len(g) for g in groups))
 

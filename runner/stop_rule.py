@@ -18,8 +18,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 MAX_SAMPLES = 20000
-DISK_OMEGA = 0.5    # c/R; the free disk's slowest (elliptic) mode is near 0.8
-WALL_OMEGA = 0.2    # c/R; the 8 R x 2 R wall's slowest flexural mode, clamped at its sides
+DISK_OMEGA = 0.5  # c/R; the free disk's slowest (elliptic) mode is near 0.8
+WALL_OMEGA = 0.2  # c/R; the 8 R x 2 R wall's slowest flexural mode, clamped at its sides
 
 
 def vibration_amplitude(displacement: np.ndarray, velocity: np.ndarray, omega: float) -> float:
@@ -29,9 +29,15 @@ def vibration_amplitude(displacement: np.ndarray, velocity: np.ndarray, omega: f
     return float(np.max(np.abs(displacement) + np.abs(velocity) / omega))
 
 
-def disk_vibration(rest: np.ndarray, rest_centre: np.ndarray, surface: np.ndarray,
-                   surface_velocity: np.ndarray, centre: np.ndarray, centre_velocity: np.ndarray,
-                   omega: float = DISK_OMEGA) -> float:
+def disk_vibration(
+    rest: np.ndarray,
+    rest_centre: np.ndarray,
+    surface: np.ndarray,
+    surface_velocity: np.ndarray,
+    centre: np.ndarray,
+    centre_velocity: np.ndarray,
+    omega: float = DISK_OMEGA,
+) -> float:
     """Amplitude of the disk's breathing: changes of its surface points' distances
     from its centre, and their rates."""
     relative = surface - centre
@@ -41,15 +47,22 @@ def disk_vibration(rest: np.ndarray, rest_centre: np.ndarray, surface: np.ndarra
     return vibration_amplitude(radius - rest_radius, rate, omega)
 
 
-def wall_vibration(rest: np.ndarray, row: np.ndarray, row_velocity: np.ndarray,
-                   omega: float = WALL_OMEGA) -> float:
+def wall_vibration(
+    rest: np.ndarray, row: np.ndarray, row_velocity: np.ndarray, omega: float = WALL_OMEGA
+) -> float:
     """Amplitude of the wall surface's motion along its normal (y)."""
     return vibration_amplitude(row[:, 1] - rest[:, 1], row_velocity[:, 1], omega)
 
 
-def future_contact_free(surface: np.ndarray, centre: np.ndarray, velocity: np.ndarray,
-                        omega: float, wall_row: np.ndarray, cutoff: float,
-                        margin: float) -> bool:
+def future_contact_free(
+    surface: np.ndarray,
+    centre: np.ndarray,
+    velocity: np.ndarray,
+    omega: float,
+    wall_row: np.ndarray,
+    cutoff: float,
+    margin: float,
+) -> bool:
     """True if the disk's surface points, moving rigidly, stay farther than
     ``cutoff + margin`` from the polyline ``wall_row`` for all later times.
 
@@ -95,8 +108,10 @@ def future_contact_free(surface: np.ndarray, centre: np.ndarray, velocity: np.nd
     spacing = 0.25 * margin
     segments = np.diff(wall_row, axis=0)
     counts = np.maximum(np.ceil(np.linalg.norm(segments, axis=1) / spacing).astype(int), 1)
-    dense = np.concatenate([wall_row[k] + np.outer(np.arange(n) / n, segments[k])
-                            for k, n in enumerate(counts)] + [wall_row[-1:]])
+    dense = np.concatenate(
+        [wall_row[k] + np.outer(np.arange(n) / n, segments[k]) for k, n in enumerate(counts)]
+        + [wall_row[-1:]]
+    )
     tree = cKDTree(dense)
 
     times = np.linspace(0.0, horizon, samples)

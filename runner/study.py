@@ -84,9 +84,9 @@ class Study:
     first_seed: int = 1
     vn: float = 0.1
     n_disk: int = 800
-    wall_width: float = 8.0        # R; MODEL.md's, too short at grazing angles (docs/model.md)
-    contact_a: float = 300.0       # a R; finer disks need more (docs/contact.md)
-    n_wall: int | str = SceneSpec.n_wall      # the reading of the wall (MODEL.md section 8)
+    wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
+    contact_a: float = 300.0  # a R; finer disks need more (docs/contact.md)
+    n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
     wall_ka: float | str = SceneSpec.wall_ka
     wall_fixed: str = SceneSpec.wall_fixed
     options: RunOptions = field(default_factory=lambda: RunOptions(every=25, route="python"))
@@ -97,16 +97,19 @@ class Study:
 
     def validate(self) -> None:
         from builder.errors import InputError
+
         if problem := name_problem(self.name):
             raise InputError(f"name {problem}, got {self.name!r}")
-        check_folder(self.folder)          # the clone's own path, for LAMMPS
+        check_folder(self.folder)  # the clone's own path, for LAMMPS
         for lattice in self.lattices:
             if lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
         if self.angles < 2 or self.samples < 1:
-            raise InputError(f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}")
+            raise InputError(
+                f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}"
+            )
         self.options.validate()
-        for lattice in self.lattices:      # once here, rather than in every impact
+        for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
 
     def jobs(self) -> list[dict]:
@@ -116,14 +119,24 @@ class Study:
             for lattice in self.lattices:
                 for gamma in study_angles(self.angles):
                     folder = self.folder / lattice / f"s{seed}" / f"g{gamma:.4f}"
-                    out.append({"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)})
+                    out.append(
+                        {"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)}
+                    )
         return out
 
     def spec(self, job: dict) -> SceneSpec:
-        return SceneSpec(seed=job["seed"], gamma_deg=job["gamma"], vn=self.vn, n_disk=self.n_disk,
-                         wall_width=self.wall_width, contact_a=self.contact_a,
-                         n_wall=self.n_wall, wall_ka=self.wall_ka, wall_fixed=self.wall_fixed,
-                         **LATTICES[job["lattice"]])
+        return SceneSpec(
+            seed=job["seed"],
+            gamma_deg=job["gamma"],
+            vn=self.vn,
+            n_disk=self.n_disk,
+            wall_width=self.wall_width,
+            contact_a=self.contact_a,
+            n_wall=self.n_wall,
+            wall_ka=self.wall_ka,
+            wall_fixed=self.wall_fixed,
+            **LATTICES[job["lattice"]],
+        )
 
     def prepare(self, retry_failed: bool = False) -> list[dict]:
         """Check the study, record it in its folder, and return its jobs."""
@@ -160,8 +173,12 @@ def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) 
     path = study.folder / "study.json"
     info = json.loads(path.read_text())
     if counts.get("ran") == len(study.jobs()):
-        info["wall_clock"] = {"seconds": round(seconds, 1), "workers": workers,
-                              "cpu": cpu_name(), "cores": os.cpu_count()}
+        info["wall_clock"] = {
+            "seconds": round(seconds, 1),
+            "workers": workers,
+            "cpu": cpu_name(),
+            "cores": os.cpu_count(),
+        }
         path.write_text(json.dumps(info, indent=1))
 
 
@@ -197,8 +214,11 @@ def set_aside_if_unreadable(job: dict) -> None:
             read_result(result)
         except UnreadableResult as error:
             result.replace(result.with_name(CORRUPT))
-            print(f"warning: {error}; moved aside to {CORRUPT}, its impact runs again",
-                  file=sys.stderr, flush=True)
+            print(
+                f"warning: {error}; moved aside to {CORRUPT}, its impact runs again",
+                file=sys.stderr,
+                flush=True,
+            )
 
 
 def prune(folder: Path) -> None:
@@ -212,7 +232,9 @@ def mark_failed(job: dict, message: str) -> None:
     folder = Path(job["folder"])
     folder.mkdir(parents=True, exist_ok=True)
     write_json_atomically({**job, "error": message}, folder / "failed.json")
-    print(f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}", flush=True)
+    print(
+        f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}", flush=True
+    )
 
 
 def run_job(study: Study, job: dict) -> dict:
@@ -234,8 +256,11 @@ class Progress:
         elapsed = time.monotonic() - self.start
         rate = done / elapsed if elapsed > 0 else 0.0
         left = (self.total - self.already - done) / rate if rate > 0 else float("nan")
-        print(f"  {self.already + done}/{self.total} impacts ({self.failed} failed), "
-              f"{rate * 60:.0f} per minute, {left / 60:.1f} min left", flush=True)
+        print(
+            f"  {self.already + done}/{self.total} impacts ({self.failed} failed), "
+            f"{rate * 60:.0f} per minute, {left / 60:.1f} min left",
+            flush=True,
+        )
 
 
 def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
@@ -251,7 +276,7 @@ def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
         groups: dict = {}
         for index, job in enumerate(jobs):
             groups.setdefault(key(job), []).append(index)
-        if len(groups) >= 8 * workers:     # so the last groups leave little idle time
+        if len(groups) >= 8 * workers:  # so the last groups leave little idle time
             break
     return sorted(groups.values(), key=len, reverse=True)
 
@@ -279,8 +304,11 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
     todo = [j for j in jobs if state(j) == "pending"]
     groups = job_groups(todo, workers)
     progress = Progress(len(jobs), len(jobs) - len(todo))
-    print(f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
-          f"{len(todo)} to run on {workers} workers", flush=True)
+    print(
+        f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
+        f"{len(todo)} to run on {workers} workers",
+        flush=True,
+    )
 
     def failed(index: int, message: str) -> None:
         progress.failed += 1
@@ -288,6 +316,13 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
         mark_failed(job, lammps_error(Path(job["folder"]) / "log.lammps", message))
 
     if todo:
-        run_jobs(lambda job: run_job(study, job), todo, groups, workers,
-                 on_done=lambda i, v: None, on_failed=failed, on_progress=progress)
+        run_jobs(
+            lambda job: run_job(study, job),
+            todo,
+            groups,
+            workers,
+            on_done=lambda i, v: None,
+            on_failed=failed,
+            on_progress=progress,
+        )
     return {**study.summary(jobs), "ran": len(todo)}

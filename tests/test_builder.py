@@ -37,10 +37,13 @@ def crossing_pairs(points: np.ndarray, springs: np.ndarray) -> list[tuple[int, i
     i, j = i[~shared], j[~shared]
 
     def side(p, q, r):
-        return np.sign((q[:, 0] - p[:, 0]) * (r[:, 1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (r[:, 0] - p[:, 0]))
+        return np.sign(
+            (q[:, 0] - p[:, 0]) * (r[:, 1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (r[:, 0] - p[:, 0])
+        )
 
-    cross = ((side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0)
-             & (side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0))
+    cross = (side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0) & (
+        side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0
+    )
     return list(zip(i[cross].tolist(), j[cross].tolist()))
 
 
@@ -49,7 +52,7 @@ def test_disk_network(lattice):
     disk = make(lattice)
     points, springs = disk.points, disk.springs
     nearest = cKDTree(points).query(points, 2)[0][:, 1]
-    assert nearest.min() >= 0.7 * disk.spacing                      # no near-coincident points
+    assert nearest.min() >= 0.7 * disk.spacing  # no near-coincident points
     lengths = np.linalg.norm(points[springs[:, 0]] - points[springs[:, 1]], axis=1)
     at_surface = (disk.role[springs] == SURFACE).any(axis=1)
     assert lengths[~at_surface].max() <= 2.25 * disk.spacing
@@ -71,7 +74,9 @@ def test_regular_interiors_are_the_lattices():
     triangular = make("triangular")
     interior = triangular.role != SURFACE
     both = interior[triangular.springs].all(axis=1)
-    lengths = np.linalg.norm(np.diff(triangular.points[triangular.springs[both]], axis=1)[:, 0], axis=1)
+    lengths = np.linalg.norm(
+        np.diff(triangular.points[triangular.springs[both]], axis=1)[:, 0], axis=1
+    )
     assert np.allclose(lengths[lengths < 1.01 * triangular.spacing], triangular.spacing)
     # six neighbours for points away from the band
     far = np.linalg.norm(triangular.points, axis=1) < 0.7
@@ -81,15 +86,16 @@ def test_regular_interiors_are_the_lattices():
     square = make("square")
     degree = np.bincount(square.springs.ravel(), minlength=len(square.points))
     far = np.linalg.norm(square.points, axis=1) < 0.7
-    assert (degree[far] == 8).all()                                 # 4 nearest + 4 diagonal
+    assert (degree[far] == 8).all()  # 4 nearest + 4 diagonal
     k2 = square.stiffness < 1
     diagonal = np.linalg.norm(np.diff(square.points[square.springs[k2]], axis=1)[:, 0], axis=1)
     assert np.allclose(diagonal, np.sqrt(2) * square.spacing)
 
 
 def test_surface_roughness_is_gaussian_along_the_normal():
-    radii = np.concatenate([np.linalg.norm(make("random", seed=s).points[:90], axis=1)
-                            for s in range(20)])
+    radii = np.concatenate(
+        [np.linalg.norm(make("random", seed=s).points[:90], axis=1) for s in range(20)]
+    )
     # 20 disks x ~90 surface points: the sample std is within 5 percent of 0.03
     assert np.std(radii - 1.0) == pytest.approx(0.03, rel=0.05)
     assert abs(np.mean(radii - 1.0)) < 0.003
@@ -115,7 +121,7 @@ def test_scene_placement(small_scene):
     info = small_scene.info
     disk = small_scene.molecule == DISK
     surface = small_scene.types == 1
-    row = small_scene.positions[:info["wall_row_tags"][1]]
+    row = small_scene.positions[: info["wall_row_tags"][1]]
     gap = distance_to_polyline(small_scene.positions[surface], row).min()
     cutoff = info["contact"]["cutoff"]
     assert cutoff < gap <= cutoff * (1 + small_scene.spec.start_gap) * (1 + 1e-6)
@@ -129,9 +135,28 @@ def test_scene_placement(small_scene):
 
 def test_same_seed_same_files(tmp_path):
     def build(folder, seed):
-        subprocess.run([sys.executable, "-m", "builder", "scene", "--n-disk", "200", "--seed", str(seed),
-                        "--gamma", "30", "--out", str(folder)], cwd=ROOT, check=True, capture_output=True)
-        return {name: (folder / name).read_bytes() for name in ("scene.data", "scene.lmp", "scene.json")}
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "builder",
+                "scene",
+                "--n-disk",
+                "200",
+                "--seed",
+                str(seed),
+                "--gamma",
+                "30",
+                "--out",
+                str(folder),
+            ],
+            cwd=ROOT,
+            check=True,
+            capture_output=True,
+        )
+        return {
+            name: (folder / name).read_bytes() for name in ("scene.data", "scene.lmp", "scene.json")
+        }
 
     first = build(tmp_path / "a", 7)
     again = build(tmp_path / "b", 7)
@@ -140,32 +165,44 @@ def test_same_seed_same_files(tmp_path):
     assert first["scene.data"] != other["scene.data"]
 
 
-@pytest.mark.parametrize("field, value, words", [
-    ("radius", -1.0, "radius must be > 0"),
-    ("n_disk", -5, "n_disk must be an integer >= 50"),
-    ("gamma_deg", 90.0, "gamma_deg must be in [0, 90)"),
-    ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
-    ("vn", 1.5, "vn must be in (0, 1)"),
-    ("wall_fixed", "top", "wall_fixed must be one of"),
-    ("contact_a", 50.0, "contact_a must be >= "),
-])
+@pytest.mark.parametrize(
+    "field, value, words",
+    [
+        ("radius", -1.0, "radius must be > 0"),
+        ("n_disk", -5, "n_disk must be an integer >= 50"),
+        ("gamma_deg", 90.0, "gamma_deg must be in [0, 90)"),
+        ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
+        ("vn", 1.5, "vn must be in (0, 1)"),
+        ("wall_fixed", "top", "wall_fixed must be one of"),
+        ("contact_a", 50.0, "contact_a must be >= "),
+    ],
+)
 def test_bad_spec(field, value, words):
-    with pytest.raises(InputError, match=words.replace("(", r"\(").replace(")", r"\)").replace("[", r"\[")):
+    with pytest.raises(
+        InputError, match=words.replace("(", r"\(").replace(")", r"\)").replace("[", r"\[")
+    ):
         build_scene(SceneSpec(**{**SMALL, field: value}))
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--radius", "-1"], "argument --radius: must be > 0"),
-    (["--n-disk", "-5"], "argument --n-disk: must be an integer >= 50"),
-    (["--gamma", "0"], "argument --gamma: must be in (0, 90) degrees"),
-    (["--gamma", "95"], "argument --gamma: must be in (0, 90) degrees"),
-    (["--lattice", "hexagonal"], "argument --lattice: invalid choice"),
-    (["--n-disk", "200", "--contact-a", "50"], "contact_a must be >= "),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--radius", "-1"], "argument --radius: must be > 0"),
+        (["--n-disk", "-5"], "argument --n-disk: must be an integer >= 50"),
+        (["--gamma", "0"], "argument --gamma: must be in (0, 90) degrees"),
+        (["--gamma", "95"], "argument --gamma: must be in (0, 90) degrees"),
+        (["--lattice", "hexagonal"], "argument --lattice: invalid choice"),
+        (["--n-disk", "200", "--contact-a", "50"], "contact_a must be >= "),
+    ],
+)
 def test_builder_cli_rejects_bad_input(tmp_path, args, words):
     out = tmp_path / "scene"
-    proc = subprocess.run([sys.executable, "-m", "builder", "scene", *args, "--out", str(out)],
-                          cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "builder", "scene", *args, "--out", str(out)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 2
     assert words in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
@@ -176,26 +213,31 @@ def test_builder_cli_rejects_bad_input(tmp_path, args, words):
 # steep step between neighbouring surface points); the builder refused them
 # until the segments were flipped in (network.constrain). The walls are at
 # the disk's number density (n_wall="density"), where the study lost them.
-STEEP = [("wall", 45, "random"), ("wall", 78, "random"), ("disk", 97, "random"),
-         *[("disk", seed, name) for seed in (64, 77, 85) for name in ("square_nu0.1", "square_nu0.3")]]
+STEEP = [
+    ("wall", 45, "random"),
+    ("wall", 78, "random"),
+    ("disk", 97, "random"),
+    *[("disk", seed, name) for seed in (64, 77, 85) for name in ("square_nu0.1", "square_nu0.3")],
+]
 
 
 def steep_body(kind: str, seed: int, name: str) -> bodies.Body:
     # A disk does not depend on the wall: a small wall saves building a dense one.
-    disk, wall = build_bodies(SceneSpec(seed=seed, n_wall="density" if kind == "wall" else 800,
-                                        **LATTICES[name]))
+    disk, wall = build_bodies(
+        SceneSpec(seed=seed, n_wall="density" if kind == "wall" else 800, **LATTICES[name])
+    )
     return disk if kind == "disk" else wall
 
 
 @pytest.mark.parametrize("kind, seed, name", STEEP, ids=lambda v: str(v))
 def test_steep_seeds_build_with_their_surface_as_springs(kind, seed, name):
     body = steep_body(kind, seed, name)
-    assert len(body.steep) == 1                         # the case really needs the fix
+    assert len(body.steep) == 1  # the case really needs the fix
     springs = {tuple(e) for e in body.springs.tolist()}
     row = body.surface
     segments = np.sort(np.stack([row, np.roll(row, -1)], axis=1), axis=1)
     if kind == "wall":
-        segments = segments[:-1]                        # the top row is open
+        segments = segments[:-1]  # the top row is open
     assert {tuple(e) for e in segments.tolist()} <= springs
     assert {tuple(e) for e in body.steep.tolist()} <= {tuple(e) for e in segments.tolist()}
     assert np.array_equal(np.unique(body.springs), np.arange(len(body.points)))
@@ -210,7 +252,7 @@ def test_scene_of_a_steep_wall_builds():
     scene = build_scene(SceneSpec(seed=45, n_wall="density", gamma_deg=45.0))
     n_row = scene.info["wall_row_tags"][1]
     polyline = {(i, i + 1) for i in range(n_row - 1)}
-    assert polyline <= {tuple(e) for e in scene.springs.tolist()}   # the contact surface is bonded
+    assert polyline <= {tuple(e) for e in scene.springs.tolist()}  # the contact surface is bonded
 
 
 DIGEST_SCRIPT = """
@@ -226,9 +268,16 @@ sys.stdout.write(repr((disk.points.tobytes(), disk.springs.tobytes())))
 def test_steep_fix_is_deterministic():
     # In fresh processes with different hash seeds: the flips must not depend
     # on the iteration order of sets or on anything but the seed.
-    outputs = [subprocess.run([sys.executable, "-c", DIGEST_SCRIPT], cwd=ROOT, check=True,
-                              capture_output=True, env={**os.environ, "PYTHONHASHSEED": str(h)}).stdout
-               for h in (1, 2)]
+    outputs = [
+        subprocess.run(
+            [sys.executable, "-c", DIGEST_SCRIPT],
+            cwd=ROOT,
+            check=True,
+            capture_output=True,
+            env={**os.environ, "PYTHONHASHSEED": str(h)},
+        ).stdout
+        for h in (1, 2)
+    ]
     assert outputs[0] == outputs[1]
     rng = np.random.default_rng(_sample_seeds(97)[0])
     disk = bodies.make_disk(rng, "random", 800)
@@ -241,8 +290,13 @@ def test_steep_fix_is_deterministic():
 # builder before the steep-segment fix (commit 9bc891f, numpy 2.4.6, scipy
 # 1.17.1): seeds that built then keep their bytes. A new scipy (Poisson-disk
 # sampler, Qhull) may change them too; then recompute them with the old code.
-PINNED = {1: "39e0b8884ef2654a", 2: "1b2dc8926a4e1808", 3: "73762977375569f8",
-          4: "bd9e7310d8d6b712", 5: "910829d3e27a9a9e"}
+PINNED = {
+    1: "39e0b8884ef2654a",
+    2: "1b2dc8926a4e1808",
+    3: "73762977375569f8",
+    4: "bd9e7310d8d6b712",
+    5: "910829d3e27a9a9e",
+}
 
 
 @pytest.mark.parametrize("seed", sorted(PINNED))
@@ -280,7 +334,7 @@ def test_fixed_roughness_is_the_drawn_gaussian(kind, seed, name):
         applied = np.linalg.norm(body.points[body.surface], axis=1) - 1.0
         drawn = delta * stream.standard_normal(len(body.surface))
     else:
-        applied = body.points[body.surface[1:-1], 1]     # the corners are not displaced
+        applied = body.points[body.surface[1:-1], 1]  # the corners are not displaced
         drawn = delta * stream.standard_normal(len(body.surface) - 2)
     assert np.allclose(applied, drawn, rtol=0, atol=1e-12)
     assert np.abs(applied).max() <= MAX_DISPLACEMENT * delta

@@ -9,8 +9,13 @@ import numpy as np
 import pytest
 
 from builder.errors import InputError
-from builder.materials import (TABLE, calibrated, square_poisson_ratio, square_ratio_for_poisson,
-                               square_wave_speed_factor)
+from builder.materials import (
+    TABLE,
+    calibrated,
+    square_poisson_ratio,
+    square_ratio_for_poisson,
+    square_wave_speed_factor,
+)
 from builder.scene import SceneSpec, build_scene
 from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
@@ -24,9 +29,9 @@ def test_triangular_lattice(tmp_path):
     r = run_stretch(StripSpec("triangular"), tmp_path)
     assert abs(r.nu - 1.0 / 3.0) < 0.01
     assert r.e_modulus == pytest.approx(2.0 / np.sqrt(3.0), rel=0.02)
-    assert r.c2 == pytest.approx(1.0, rel=0.02)                 # c^2 = k d^2 / m
-    assert r.nonlinearity < 0.01                                # linear response
-    assert r.imbalance < 1e-6                                   # settled: the grips balance
+    assert r.c2 == pytest.approx(1.0, rel=0.02)  # c^2 = k d^2 / m
+    assert r.nonlinearity < 0.01  # linear response
+    assert r.imbalance < 1e-6  # settled: the grips balance
 
 
 @pytest.mark.parametrize("ratio", [1.0 / 9.0, 3.0 / 7.0])
@@ -43,7 +48,7 @@ def test_square_ratio_for_a_poisson_ratio():
         assert square_ratio_for_poisson(nu) == pytest.approx(nu / (1 - nu), rel=1e-12)
         assert square_ratio_for_poisson(nu, 45.0) == pytest.approx((1 - nu) / (4 * nu), rel=1e-12)
     with pytest.raises(InputError, match="nu must be between"):
-        square_ratio_for_poisson(1.2)                           # nu = r / (1 + r) < 1 along the axes
+        square_ratio_for_poisson(1.2)  # nu = r / (1 + r) < 1 along the axes
 
 
 def test_random_lattice_is_reproducible_across_seeds():
@@ -77,7 +82,10 @@ def test_table_sets_the_units_of_a_scene():
 
 
 def test_uncalibrated_lattice_is_refused():
-    with pytest.raises(InputError, match=r"k2_over_k1 = 0.2 is not calibrated.*python -m calibration run --square 0.2"):
+    with pytest.raises(
+        InputError,
+        match=r"k2_over_k1 = 0.2 is not calibrated.*python -m calibration run --square 0.2",
+    ):
         build_scene(SceneSpec(lattice="square", k2_over_k1=0.2, **SMALL))
 
 
@@ -85,5 +93,7 @@ def test_table_covers_the_study():
     table = json.loads(TABLE.read_text())
     assert table["command"] == "make calibrate"
     for nu in (0.1, 0.3):
-        assert calibrated("square", square_ratio_for_poisson(nu))["nu"] == pytest.approx(nu, abs=0.01)
+        assert calibrated("square", square_ratio_for_poisson(nu))["nu"] == pytest.approx(
+            nu, abs=0.01
+        )
     assert calibrated("triangular")["samples"] == 1 and calibrated("random")["samples"] >= 10

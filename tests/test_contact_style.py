@@ -23,7 +23,7 @@ def test_forces_equal_the_python_implementation(tmp_path, rule, seed):
     vertices, points = random_case(seed)
     energy, on_vertices, on_points = lammps_forces(tmp_path, vertices, points, rule)
     expected = polyline_contact(points, vertices, A, V0, CUTOFF, rule)
-    assert np.count_nonzero(np.any(expected.on_points, axis=1)) > 10     # many points in contact
+    assert np.count_nonzero(np.any(expected.on_points, axis=1)) > 10  # many points in contact
     assert relative(on_points, expected.on_points) < 1e-10
     assert relative(on_vertices, expected.on_vertices) < 1e-10
     assert energy == pytest.approx(expected.energy, rel=1e-12)
@@ -35,16 +35,21 @@ def test_gradient_rule_is_the_derivative_of_the_energy(tmp_path):
     forces = np.concatenate([on_vertices, on_points])
     xy = np.concatenate([vertices, points])
     h = 1e-7
-    for atom in np.argsort(-np.abs(forces).sum(axis=1))[:6]:      # the most loaded atoms
+    for atom in np.argsort(-np.abs(forces).sum(axis=1))[:6]:  # the most loaded atoms
         for d in range(2):
             shifted = []
             for sign in (1, -1):
                 moved = xy.copy()
                 moved[atom, d] += sign * h
-                shifted.append(lammps_forces(tmp_path, moved[:len(vertices)], moved[len(vertices):],
-                                             "gradient")[0])
+                shifted.append(
+                    lammps_forces(
+                        tmp_path, moved[: len(vertices)], moved[len(vertices) :], "gradient"
+                    )[0]
+                )
             derivative = (shifted[0] - shifted[1]) / (2 * h)
-            assert -derivative == pytest.approx(forces[atom, d], rel=1e-6, abs=1e-6 * np.abs(forces).max())
+            assert -derivative == pytest.approx(
+                forces[atom, d], rel=1e-6, abs=1e-6 * np.abs(forces).max()
+            )
 
 
 def test_lever_rule_equals_the_gradient(tmp_path):
@@ -69,20 +74,24 @@ def test_no_net_force_or_torque(tmp_path):
 
 # A polyline with a flat part, a peak (convex vertex), a valley (concave
 # vertex) and a steep segment, and points placed on its special spots.
-SPECIAL = np.array([[-0.2, 0.0], [-0.1, 0.0], [0.0, 0.02], [0.05, -0.03], [0.08, 0.05],
-                    [0.15, 0.05], [0.25, 0.05]])
+SPECIAL = np.array(
+    [[-0.2, 0.0], [-0.1, 0.0], [0.0, 0.02], [0.05, -0.03], [0.08, 0.05], [0.15, 0.05], [0.25, 0.05]]
+)
 
 
 def special_forces(tmp_path, points):
     return lammps_forces(tmp_path, SPECIAL, np.asarray(points, float))[2]
 
 
-@pytest.mark.parametrize("name, point, direction", [
-    ("over a peak vertex", [0.0, 0.04], [1.0, 0.0]),
-    ("over a segment's end", [-0.1, 0.02], [1.0, 0.0]),
-    # below the extended line of the flat top segment, closest to the steep one
-    ("over a steep segment", [0.06, 0.01], [1.0, 0.0]),
-])
+@pytest.mark.parametrize(
+    "name, point, direction",
+    [
+        ("over a peak vertex", [0.0, 0.04], [1.0, 0.0]),
+        ("over a segment's end", [-0.1, 0.02], [1.0, 0.0]),
+        # below the extended line of the flat top segment, closest to the steep one
+        ("over a steep segment", [0.06, 0.01], [1.0, 0.0]),
+    ],
+)
 def test_forces_are_finite_and_continuous(tmp_path, name, point, direction):
     eps = 1e-7
     p = np.array(point)
@@ -116,7 +125,7 @@ def test_force_at_the_cutoff(tmp_path):
 
 
 def test_a_point_inside_the_wall_stops_the_run(tmp_path):
-    points = np.array([[-0.15, 0.01], [-0.12, -0.005]])              # the second is inside
+    points = np.array([[-0.15, 0.01], [-0.12, -0.005]])  # the second is inside
     with pytest.raises(RuntimeError, match=r"atom \d+ is inside the wall at step 0"):
         lammps_forces(tmp_path, SPECIAL, points)
 
@@ -131,20 +140,29 @@ def test_one_and_two_ranks_give_the_same_forces(tmp_path):
     assert two[0] == pytest.approx(one[0], rel=1e-12)
 
 
-@pytest.mark.parametrize("keywords, message", [
-    ("reach", "Illegal pair_style polyline/exp reach command: missing argument(s)"),
-    ("reach 0.25 rule", "Illegal pair_style polyline/exp rule command: missing argument(s)"),
-    ("bogus 1", "Pair polyline/exp: unknown keyword bogus"),
-])
+@pytest.mark.parametrize(
+    "keywords, message",
+    [
+        ("reach", "Illegal pair_style polyline/exp reach command: missing argument(s)"),
+        ("reach 0.25 rule", "Illegal pair_style polyline/exp rule command: missing argument(s)"),
+        ("bogus 1", "Pair polyline/exp: unknown keyword bogus"),
+    ],
+)
 def test_pair_style_arguments_are_checked(tmp_path, keywords, message):
     """A keyword without its value is reported as such (LAMMPS's wording for
     missing arguments), not as an unknown keyword."""
     deck = tmp_path / "in.args"
-    deck.write_text("units lj\ndimension 2\natom_style bond\n"
-                    "region box block 0 1 0 1 -0.5 0.5\ncreate_box 3 box\n"
-                    "include decks/polyline_exp.lmp\n"
-                    f"pair_style polyline/exp {A} {V0} {CUTOFF} 1 2 {keywords}\n")
-    proc = subprocess.run(["lmp", "-in", str(deck), "-log", "none", "-nocite"], cwd=ROOT,
-                          capture_output=True, text=True)
+    deck.write_text(
+        "units lj\ndimension 2\natom_style bond\n"
+        "region box block 0 1 0 1 -0.5 0.5\ncreate_box 3 box\n"
+        "include decks/polyline_exp.lmp\n"
+        f"pair_style polyline/exp {A} {V0} {CUTOFF} 1 2 {keywords}\n"
+    )
+    proc = subprocess.run(
+        ["lmp", "-in", str(deck), "-log", "none", "-nocite"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode != 0
     assert f"ERROR: {message}" in proc.stdout

@@ -11,16 +11,24 @@ from tests.helpers import new_lammps
 @pytest.fixture(scope="module")
 def lammps_scene(small_scene_dir):
     lmp = new_lammps()
-    for command in ["units lj", "dimension 2", "boundary s s p", "atom_style bond",
-                    "special_bonds lj/coul 1.0 1.0 1.0", "bond_style class2",
-                    f"read_data {small_scene_dir}/scene.data",
-                    "pair_style zero 0.1", "pair_coeff * *",
-                    "compute bonds all bond/local dist engpot",
-                    "compute ends all property/local batom1 batom2 btype",
-                    # local computes run only when something asks for them
-                    "compute bonds_sum all reduce sum c_bonds[2]",
-                    "compute ends_max all reduce max c_ends[1]",
-                    "thermo_style custom step c_bonds_sum c_ends_max", "run 0"]:
+    for command in [
+        "units lj",
+        "dimension 2",
+        "boundary s s p",
+        "atom_style bond",
+        "special_bonds lj/coul 1.0 1.0 1.0",
+        "bond_style class2",
+        f"read_data {small_scene_dir}/scene.data",
+        "pair_style zero 0.1",
+        "pair_coeff * *",
+        "compute bonds all bond/local dist engpot",
+        "compute ends all property/local batom1 batom2 btype",
+        # local computes run only when something asks for them
+        "compute bonds_sum all reduce sum c_bonds[2]",
+        "compute ends_max all reduce max c_ends[1]",
+        "thermo_style custom step c_bonds_sum c_ends_max",
+        "run 0",
+    ]:
         lmp.command(command)
     yield lmp
     lmp.close()
@@ -40,7 +48,7 @@ def test_lammps_reads_the_atoms(lammps_scene, small_scene):
     v = np.ctypeslib.as_array(lmp.gather_atoms("v", 1, 3)).reshape(n, 3)
     types = np.ctypeslib.as_array(lmp.gather_atoms("type", 0, 1))
     molecule = np.ctypeslib.as_array(lmp.gather_atoms("molecule", 0, 1))
-    assert np.array_equal(x[:, :2], small_scene.positions)          # exact: shortest round-trip text
+    assert np.array_equal(x[:, :2], small_scene.positions)  # exact: shortest round-trip text
     assert np.array_equal(v[:, :2], small_scene.velocities)
     assert np.array_equal(types, small_scene.types)
     assert np.array_equal(molecule, small_scene.molecule)
@@ -55,7 +63,7 @@ def test_lammps_reads_the_springs_at_their_natural_lengths(lammps_scene, small_s
     bonds = lmp.numpy.extract_compute("bonds", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
     assert len(ends) == m
     pairs = np.sort(ends[:, :2].astype(int) - 1, axis=1)
-    order = ends[:, 2].astype(int) - 1                              # bond type = spring index
+    order = ends[:, 2].astype(int) - 1  # bond type = spring index
     assert np.array_equal(pairs, small_scene.springs[order])
     # every spring starts at exactly its natural length: zero energy, zero force
     assert np.array_equal(bonds[:, 0], small_scene.natural_lengths[order])

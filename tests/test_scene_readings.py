@@ -30,7 +30,7 @@ def test_each_reading_builds_as_asked(n_wall, wall_ka):
     assert info["contact"]["cutoff"] == info["wall_spacing"]
     wall = scene.molecule != DISK
     wall_springs = wall[scene.springs[:, 0]]
-    assert np.all(wall[scene.springs[:, 1]] == wall_springs)      # no spring joins the bodies
+    assert np.all(wall[scene.springs[:, 1]] == wall_springs)  # no spring joins the bodies
     assert np.allclose(scene.ka[wall_springs], info["ka_wall"])
     assert np.allclose(scene.ka[~wall_springs], info["ka_disk"])
     if wall_ka == "same-c":
@@ -41,8 +41,10 @@ def test_each_reading_builds_as_asked(n_wall, wall_ka):
         assert info["ka_wall"] == pytest.approx(wall_ka * info["ka_disk"], rel=1e-12)
 
 
-@pytest.mark.parametrize("wall_fixed, rows", [("sides", ("left", "right")),
-                                              ("sides+bottom", ("left", "right", "bottom"))])
+@pytest.mark.parametrize(
+    "wall_fixed, rows",
+    [("sides", ("left", "right")), ("sides+bottom", ("left", "right", "bottom"))],
+)
 def test_held_points_are_the_reading_s(wall_fixed, rows):
     scene = build_scene(SceneSpec(gamma_deg=30.0, wall_fixed=wall_fixed, **SMALL))
     held = scene.positions[scene.molecule == WALL_HELD]
@@ -51,12 +53,13 @@ def test_held_points_are_the_reading_s(wall_fixed, rows):
     on_side = np.isclose(np.abs(held[:, 0]), half)
     on_bottom = np.isclose(held[:, 1], low)
     assert np.all(on_side | on_bottom)
-    assert on_side.sum() >= 2 * 13                      # both sides, top corners included
-    assert (on_bottom & ~on_side).any() == ("bottom" in rows)   # bottom corners are the sides'
+    assert on_side.sum() >= 2 * 13  # both sides, top corners included
+    assert (on_bottom & ~on_side).any() == ("bottom" in rows)  # bottom corners are the sides'
 
     # every point of the held rows is held, and no other wall point
-    rim = np.isclose(np.abs(wall[:, 0]), half) | (np.isclose(wall[:, 1], low) if "bottom" in rows
-                                                  else False)
+    rim = np.isclose(np.abs(wall[:, 0]), half) | (
+        np.isclose(wall[:, 1], low) if "bottom" in rows else False
+    )
     assert rim.sum() == len(held)
 
 
@@ -66,42 +69,72 @@ def test_the_default_scene_is_the_chosen_reading():
     spec = SceneSpec()
     assert (spec.n_wall, spec.wall_ka, spec.wall_fixed) == (1600, 10.0, "sides")
     from runner.study import PRESETS
+
     for study in PRESETS.values():
         assert (study.n_wall, study.wall_ka, study.wall_fixed) == (1600, 10.0, "sides")
     info = build_scene(SceneSpec(gamma_deg=30.0)).info
     assert abs(info["n_wall_points"] - 1600) < 0.05 * 1600
     assert info["ka_wall"] == pytest.approx(10.0 * info["ka_disk"], rel=1e-12)
-    proc = subprocess.run([sys.executable, "-m", "runner", "impact", "--help"], cwd=ROOT,
-                          capture_output=True, text=True, check=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "runner", "impact", "--help"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert "(default: 1600)" in proc.stdout and "(default: 10)" in proc.stdout
 
 
-@pytest.mark.parametrize("field, value, words", [
-    ("n_wall", 12, "n_wall must be an integer >= 50 or 'density'"),
-    ("n_wall", "dense", "n_wall must be an integer >= 50 or 'density'"),
-    ("wall_ka", 0.0, "wall_ka must be a number in [0.01, 1000]"),
-    ("wall_ka", "hard", "wall_ka must be a number in [0.01, 1000]"),
-])
+@pytest.mark.parametrize(
+    "field, value, words",
+    [
+        ("n_wall", 12, "n_wall must be an integer >= 50 or 'density'"),
+        ("n_wall", "dense", "n_wall must be an integer >= 50 or 'density'"),
+        ("wall_ka", 0.0, "wall_ka must be a number in [0.01, 1000]"),
+        ("wall_ka", "hard", "wall_ka must be a number in [0.01, 1000]"),
+    ],
+)
 def test_bad_reading_in_a_spec(field, value, words):
     from builder.errors import InputError
+
     with pytest.raises(InputError, match=words.replace("[", r"\[")):
         build_scene(SceneSpec(**{**SMALL, field: value}))
 
 
-@pytest.mark.parametrize("command, args, words", [
-    (["builder", "scene"], ["--n-wall", "12"], "argument --n-wall: must be an integer >= 50 or 'density'"),
-    (["builder", "scene"], ["--n-wall", "dense"], "argument --n-wall: must be an integer >= 50"),
-    (["builder", "scene"], ["--wall-ka", "0"], "argument --wall-ka: must be a number in [0.01, 1000]"),
-    (["runner", "impact"], ["--wall-ka", "hard"], "argument --wall-ka: must be a number"),
-    (["runner", "impact"], ["--wall-fixed", "top"], "argument --wall-fixed: invalid choice"),
-    (["runner", "study", "demo"], ["--wall-ka", "5000"], "argument --wall-ka: must be a number"),
-    (["runner", "study", "demo"], ["--n-wall", "x"], "argument --n-wall: must be an integer"),
-])
+@pytest.mark.parametrize(
+    "command, args, words",
+    [
+        (
+            ["builder", "scene"],
+            ["--n-wall", "12"],
+            "argument --n-wall: must be an integer >= 50 or 'density'",
+        ),
+        (
+            ["builder", "scene"],
+            ["--n-wall", "dense"],
+            "argument --n-wall: must be an integer >= 50",
+        ),
+        (
+            ["builder", "scene"],
+            ["--wall-ka", "0"],
+            "argument --wall-ka: must be a number in [0.01, 1000]",
+        ),
+        (["runner", "impact"], ["--wall-ka", "hard"], "argument --wall-ka: must be a number"),
+        (["runner", "impact"], ["--wall-fixed", "top"], "argument --wall-fixed: invalid choice"),
+        (
+            ["runner", "study", "demo"],
+            ["--wall-ka", "5000"],
+            "argument --wall-ka: must be a number",
+        ),
+        (["runner", "study", "demo"], ["--n-wall", "x"], "argument --n-wall: must be an integer"),
+    ],
+)
 def test_bad_reading_on_the_command_line(tmp_path, command, args, words):
     out = tmp_path / "scene"
     where = ["--out", str(out)] if command[-1] != "demo" else ["--name", "test_bad_reading"]
-    proc = subprocess.run([sys.executable, "-m", *command, *args, *where], cwd=ROOT,
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", *command, *args, *where], cwd=ROOT, capture_output=True, text=True
+    )
     assert proc.returncode == 2
     assert words in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
@@ -111,11 +144,35 @@ def test_bad_reading_on_the_command_line(tmp_path, command, args, words):
 def test_a_study_records_its_reading_in_every_row():
     name = "test_study_reading"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
-    proc = subprocess.run([sys.executable, "-m", "runner", "study", "demo", "--name", name,
-                           "--lattices", "random", "--angles", "2", "--samples", "1",
-                           "--n-disk", "200", "--n-wall", "600", "--wall-ka", "2",
-                           "--wall-fixed", "sides+bottom"], cwd=ROOT, capture_output=True,
-                          text=True, timeout=600)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "runner",
+            "study",
+            "demo",
+            "--name",
+            name,
+            "--lattices",
+            "random",
+            "--angles",
+            "2",
+            "--samples",
+            "1",
+            "--n-disk",
+            "200",
+            "--n-wall",
+            "600",
+            "--wall-ka",
+            "2",
+            "--wall-fixed",
+            "sides+bottom",
+        ],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stderr
     with (ROOT / "runs" / name / "impacts.csv").open() as handle:
         rows = list(csv.DictReader(handle))
@@ -131,11 +188,16 @@ def test_a_study_records_its_reading_in_every_row():
 def test_the_committed_readings_table_comes_from_its_rows(tmp_path):
     """The page of docs/benchmarks/scene_readings.md, rebuilt from the committed
     rows (the machine and date line aside), is the committed page."""
-    subprocess.run([sys.executable, "bench/scene_readings.py", "--from-csv", "--docs", str(tmp_path)],
-                   cwd=ROOT, check=True, capture_output=True, timeout=600)
+    subprocess.run(
+        [sys.executable, "bench/scene_readings.py", "--from-csv", "--docs", str(tmp_path)],
+        cwd=ROOT,
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
     committed = (ROOT / "docs" / "benchmarks" / "scene_readings.md").read_text().splitlines()
     rebuilt = (tmp_path / "scene_readings.md").read_text().splitlines()
     assert committed[0] == rebuilt[0] and committed[3:] == rebuilt[3:]
-    assert committed[2].split(" on ")[0] == rebuilt[2].split(" on ")[0]     # the same command
-    assert "1. `1600_10ka_sides`" in "\n".join(rebuilt)                      # the default's reading
+    assert committed[2].split(" on ")[0] == rebuilt[2].split(" on ")[0]  # the same command
+    assert "1. `1600_10ka_sides`" in "\n".join(rebuilt)  # the default's reading
     assert (tmp_path / "scene_readings.png").stat().st_size > 10_000

@@ -15,7 +15,7 @@ from tests.helpers import SMALL
 
 CUTOFF, MARGIN = 0.07, 0.01
 ANGLES = np.linspace(0.0, 2 * np.pi, 60, endpoint=False)
-RING = np.column_stack([np.cos(ANGLES), np.sin(ANGLES)])        # a disk of radius 1 at the origin
+RING = np.column_stack([np.cos(ANGLES), np.sin(ANGLES)])  # a disk of radius 1 at the origin
 FLAT = np.column_stack([np.linspace(-4, 4, 81), np.zeros(81)])
 
 
@@ -25,9 +25,12 @@ def disk_at(height: float) -> np.ndarray:
 
 def test_a_disk_moving_away_is_clear_and_one_moving_in_is_not():
     centre = np.array([0.0, 1.2])
-    assert future_contact_free(disk_at(1.2), centre, np.array([0.05, 0.1]), 0.0, FLAT, CUTOFF, MARGIN)
-    assert not future_contact_free(disk_at(1.2), centre, np.array([0.05, -0.1]), 0.0, FLAT, CUTOFF,
-                                   MARGIN)
+    assert future_contact_free(
+        disk_at(1.2), centre, np.array([0.05, 0.1]), 0.0, FLAT, CUTOFF, MARGIN
+    )
+    assert not future_contact_free(
+        disk_at(1.2), centre, np.array([0.05, -0.1]), 0.0, FLAT, CUTOFF, MARGIN
+    )
 
 
 def test_an_asperity_ahead_is_seen():
@@ -46,7 +49,9 @@ def test_vibration_amplitude_of_a_breathing_disk():
     for phase in (0.0, 0.7, 1.9):
         surface = RING * (1 + a * np.sin(phase))
         velocity = RING * a * w * np.cos(phase)
-        amplitude = disk_vibration(RING, np.zeros(2), surface, velocity, np.zeros(2), np.zeros(2), w)
+        amplitude = disk_vibration(
+            RING, np.zeros(2), surface, velocity, np.zeros(2), np.zeros(2), w
+        )
         assert amplitude == pytest.approx(a * (abs(np.sin(phase)) + abs(np.cos(phase))), rel=1e-12)
         assert amplitude >= a * 0.999
 
@@ -60,8 +65,10 @@ def test_stopping_early_changes_no_result(tmp_path, gamma, saves):
     On the dense wall of the first study: on the default wall, stiffer, the
     disk leaves cleanly and both rules stop at the same check at every angle.)"""
     scene = build_scene(SceneSpec(gamma_deg=gamma, n_wall="density", wall_ka="same-c", **SMALL))
-    results = {rule: run_scene(write_scene(scene, tmp_path / rule), RunOptions(stop_rule=rule))
-               for rule in ("predict", "clearance")}
+    results = {
+        rule: run_scene(write_scene(scene, tmp_path / rule), RunOptions(stop_rule=rule))
+        for rule in ("predict", "clearance")
+    }
     early, late = results["predict"], results["clearance"]
     assert early["steps"] < late["steps"] if saves else early["steps"] <= late["steps"]
     for key in ("e", "beta", "omega"):

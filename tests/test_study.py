@@ -20,16 +20,30 @@ from runner.study import Study, job_groups
 from tests.helpers import ROOT
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
-COMPARED = ("study_lattice", "seed", "gamma_deg", "cot_gamma", "e", "beta", "omega", "steps",
-            "contact_time")
+COMPARED = (
+    "study_lattice",
+    "seed",
+    "gamma_deg",
+    "cot_gamma",
+    "e",
+    "beta",
+    "omega",
+    "steps",
+    "contact_time",
+)
 
 
 def study(name: str, *extra: str, wait: bool = True):
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY, *extra]
     if wait:
         return subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
-    return subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    return subprocess.Popen(
+        command,
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
 
 
 def table(name: str) -> list[tuple]:
@@ -57,7 +71,7 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     finished = len(list(folder.glob("random/*/*/result.json")))
-    assert 1 <= finished < 6                              # killed half-way
+    assert 1 <= finished < 6  # killed half-way
     resumed = study(name)
     assert resumed.returncode == 0, resumed.stderr
     assert f"{finished} already done" in resumed.stdout
@@ -67,7 +81,7 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
 def test_two_partitions_give_the_serial_results(uninterrupted):
     name = "test_study_partitions"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
-    proc = study(name, "--partitions", "2", "--batch-size", "1")   # 3 MPI jobs, built ahead
+    proc = study(name, "--partitions", "2", "--batch-size", "1")  # 3 MPI jobs, built ahead
     assert proc.returncode == 0, proc.stderr
     assert table(name) == uninterrupted
 
@@ -75,14 +89,20 @@ def test_two_partitions_give_the_serial_results(uninterrupted):
 def test_a_crashing_job_is_reported_and_the_others_finish():
     def job(x):
         if x == 3:
-            os._exit(7)                                   # as LAMMPS does on an error
+            os._exit(7)  # as LAMMPS does on an error
         if x == 5:
             raise ValueError("bad input")
         return x * x
 
     done, failed = {}, {}
-    run_jobs(job, list(range(9)), [[0, 1, 2, 3, 4, 5], [6, 7, 8]], 2,
-             on_done=done.__setitem__, on_failed=failed.__setitem__)
+    run_jobs(
+        job,
+        list(range(9)),
+        [[0, 1, 2, 3, 4, 5], [6, 7, 8]],
+        2,
+        on_done=done.__setitem__,
+        on_failed=failed.__setitem__,
+    )
     assert done == {i: i * i for i in (0, 1, 2, 4, 6, 7, 8)}
     assert set(failed) == {3, 5}
     assert "exit status 7" in failed[3] and "ValueError: bad input" in failed[5]
@@ -95,19 +115,22 @@ def test_many_crashes_in_many_groups_lose_no_job():
         return -x
 
     jobs = list(range(60))
-    groups = [jobs[i:i + 6] for i in range(0, 60, 6)]
-    for _ in range(5):                                    # a lost result or a hang shows by chance
+    groups = [jobs[i : i + 6] for i in range(0, 60, 6)]
+    for _ in range(5):  # a lost result or a hang shows by chance
         done, failed = {}, {}
         run_jobs(job, jobs, groups, 2, on_done=done.__setitem__, on_failed=failed.__setitem__)
         assert set(failed) == {x for x in jobs if x % 7 == 3}
         assert done == {x: -x for x in jobs if x % 7 != 3}
 
 
-@pytest.mark.parametrize("samples, lattices, angles, per_group", [
-    (20, 2, 3, 6),         # whole samples: the wall is built once per seed
-    (4, 4, 2, 2),          # few samples: a lattice of a sample each
-    (1, 1, 3, 1),          # one lattice of one sample: single impacts
-])
+@pytest.mark.parametrize(
+    "samples, lattices, angles, per_group",
+    [
+        (20, 2, 3, 6),  # whole samples: the wall is built once per seed
+        (4, 4, 2, 2),  # few samples: a lattice of a sample each
+        (1, 1, 3, 1),  # one lattice of one sample: single impacts
+    ],
+)
 def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group):
     names = ("random", "triangular", "square_nu0.1", "square_nu0.3")[:lattices]
     jobs = Study("groups", lattices=names, angles=angles, samples=samples).jobs()
@@ -121,8 +144,9 @@ def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group)
 
 def runs_listing() -> set[str]:
     """Everything under runs/ and beside it that a study could have written."""
-    return {str(p.relative_to(ROOT)) for p in (ROOT / "runs").glob("*")} | \
-           {p.name for p in ROOT.glob("escape*")}
+    return {str(p.relative_to(ROOT)) for p in (ROOT / "runs").glob("*")} | {
+        p.name for p in ROOT.glob("escape*")
+    }
 
 
 @pytest.mark.parametrize("name", ["my study", "", "../escape", ".", "a/b"])
@@ -141,18 +165,44 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     off the end; the other finishes, and a tiny --max-drift flags it."""
     name = "test_study_failed"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
-    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, "--lattices", "random",
-               "--angles", "2", "--samples", "1", "--n-disk", "200", "--wall-width", "4",
-               "--n-wall", "density", "--wall-ka", "same-c", "--max-drift", "1e-9"]
+    command = [
+        sys.executable,
+        "-m",
+        "runner",
+        "study",
+        "demo",
+        "--name",
+        name,
+        "--lattices",
+        "random",
+        "--angles",
+        "2",
+        "--samples",
+        "1",
+        "--n-disk",
+        "200",
+        "--wall-width",
+        "4",
+        "--n-wall",
+        "density",
+        "--wall-ka",
+        "same-c",
+        "--max-drift",
+        "1e-9",
+    ]
     proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 1, proc.stderr
     last = proc.stdout.strip().splitlines()[-1]
-    assert re.match(r"1 impacts, 1 above --max-drift 1e-09, 1 failed \(1: the disk slid off the end "
-                    r"of the wall before it rebounded\); results in runs/test_study_failed/results.md$",
-                    last), last
+    assert re.match(
+        r"1 impacts, 1 above --max-drift 1e-09, 1 failed \(1: the disk slid off the end "
+        r"of the wall before it rebounded\); results in runs/test_study_failed/results.md$",
+        last,
+    ), last
     page = (ROOT / "runs" / name / "results.md").read_text()
-    assert ("| the disk slid off the end of the wall before it rebounded | 1 | random 80.5 deg: seed 1 |"
-            in page)
+    assert (
+        "| the disk slid off the end of the wall before it rebounded | 1 | random 80.5 deg: seed 1 |"
+        in page
+    )
     assert "Made by `python -m runner study demo --name test_study_failed" in page
     assert "--max-drift 1e-09`" in page
     assert "1 of the 1 impacts have an energy drift" in page and "random 5.7106 deg: seed 1" in page
@@ -168,7 +218,9 @@ def descendants(pid: int) -> set[int]:
     found: set[int] = set()
     todo = [pid]
     while todo:
-        out = subprocess.run(["pgrep", "-P", str(todo.pop())], capture_output=True, text=True).stdout
+        out = subprocess.run(
+            ["pgrep", "-P", str(todo.pop())], capture_output=True, text=True
+        ).stdout
         children = {int(p) for p in out.split()}
         todo += children - found
         found |= children
@@ -192,32 +244,41 @@ def alive(pid: int) -> bool:
     return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
-@pytest.mark.parametrize("signum, extra, worker", [
-    (signal.SIGTERM, (), "python"),
-    (signal.SIGINT, (), "python"),
-    (signal.SIGTERM, ("--partitions", "2", "--batch-size", "3"), "lmp"),
-])
+@pytest.mark.parametrize(
+    "signum, extra, worker",
+    [
+        (signal.SIGTERM, (), "python"),
+        (signal.SIGINT, (), "python"),
+        (signal.SIGTERM, ("--partitions", "2", "--batch-size", "3"), "lmp"),
+    ],
+)
 def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, worker):
     name = "test_study_signal"
     folder = ROOT / "runs" / name
     subprocess.run(["rm", "-rf", str(folder)])
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY, *extra]
     # its own session, so that a failing test can still clean up the whole group
-    proc = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, start_new_session=True)
+    proc = subprocess.Popen(
+        command,
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     try:
         deadline = time.monotonic() + 120
         below: set[int] = set()
-        while time.monotonic() < deadline:       # until the impacts are running
+        while time.monotonic() < deadline:  # until the impacts are running
             below = descendants(proc.pid)
             names = [comm(p) for p in below if alive(p)]
-            if sum(n.startswith(worker) for n in names) >= 2:    # two workers or ranks
+            if sum(n.startswith(worker) for n in names) >= 2:  # two workers or ranks
                 break
             time.sleep(0.2)
-        time.sleep(1.0)                          # inside LAMMPS by now
+        time.sleep(1.0)  # inside LAMMPS by now
         below = descendants(proc.pid) | below
         assert below, "the study started no process"
-        os.kill(proc.pid, signum)                # the study's process only, as kill does
+        os.kill(proc.pid, signum)  # the study's process only, as kill does
         out, err = proc.communicate(timeout=30)
         assert proc.returncode == 128 + signum, err
         assert "Traceback" not in err
@@ -250,8 +311,8 @@ def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
     warnings = report.stderr.strip().splitlines()
     assert len(warnings) == 2 and all(line.startswith("warning: ") for line in warnings)
     assert str(truncated) in report.stderr and str(empty) in report.stderr
-    assert len(table(name)) == 4                          # the two left out
-    assert truncated.read_text() == '{"e": 0.3, "bet'    # and left alone
+    assert len(table(name)) == 4  # the two left out
+    assert truncated.read_text() == '{"e": 0.3, "bet'  # and left alone
 
     rerun = study(name)
     assert rerun.returncode == 0, rerun.stderr

@@ -6,12 +6,21 @@ import numpy as np
 import pytest
 
 from analysis.fits import bootstrap, fit_compliant, fit_walton
-from analysis.theory import (Compliant, compliant_beta, compliant_beta_integrated, eta_squared,
-                             walton_beta)
+from analysis.theory import (
+    Compliant,
+    compliant_beta,
+    compliant_beta_integrated,
+    eta_squared,
+    walton_beta,
+)
 
 PSI = np.array([0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0])
-MODELS = [Compliant(e=0.9, mu=0.3, nu=0.3), Compliant(e=0.3, mu=0.5, nu=0.29, alpha=2.9),
-          Compliant(e=1.0, mu=0.2, nu=0.1), Compliant(e=0.6, mu=0.1, nu=0.45, alpha=3.1)]
+MODELS = [
+    Compliant(e=0.9, mu=0.3, nu=0.3),
+    Compliant(e=0.3, mu=0.5, nu=0.29, alpha=2.9),
+    Compliant(e=1.0, mu=0.2, nu=0.1),
+    Compliant(e=0.6, mu=0.1, nu=0.45, alpha=3.1),
+]
 
 
 @pytest.mark.parametrize("model", MODELS)
@@ -25,7 +34,7 @@ def test_closed_form_agrees_with_direct_integration(model):
 def test_gross_slip_is_walton_sliding_line(model):
     """Small psi (large tan gamma): slip all through the contact."""
     line = -1.0 + model.mu * (1.0 + model.e) * model.alpha * PSI
-    gross = line < -0.5                      # well inside the sliding branch
+    gross = line < -0.5  # well inside the sliding branch
     closed = np.array([compliant_beta(p, model) for p in PSI[gross]])
     assert gross.any()
     assert np.allclose(closed, line[gross], rtol=0, atol=1e-12)
@@ -35,7 +44,7 @@ def test_limits():
     psi = np.array([0.3, 1.0, 4.0])
     frictionless = Compliant(e=0.8, mu=0.0, nu=0.3)
     assert np.allclose([compliant_beta(p, frictionless) for p in psi], -1.0, atol=1e-12)
-    sticking = Compliant(e=0.8, mu=1e6, nu=0.3)            # never slips
+    sticking = Compliant(e=0.8, mu=1e6, nu=0.3)  # never slips
     expected = -np.cos(sticking.omega * sticking.end)
     assert np.allclose([compliant_beta(p, sticking) for p in psi], expected, atol=1e-9)
     assert eta_squared(0.0) == pytest.approx(1.0)
@@ -46,8 +55,16 @@ def test_limits():
 def synthetic(beta_of_psi, e_of_psi, psi, samples=30, noise=0.03, seed=0):
     """Per-angle groups of (psi, e, beta) samples with Gaussian noise on beta."""
     rng = np.random.default_rng(seed)
-    return [np.column_stack([np.full(samples, p), np.full(samples, e_of_psi(p)),
-                             beta_of_psi(p) + noise * rng.standard_normal(samples)]) for p in psi]
+    return [
+        np.column_stack(
+            [
+                np.full(samples, p),
+                np.full(samples, e_of_psi(p)),
+                beta_of_psi(p) + noise * rng.standard_normal(samples),
+            ]
+        )
+        for p in psi
+    ]
 
 
 def test_fit_recovers_walton_parameters():

@@ -25,8 +25,12 @@ def smooth(tmp_path_factory):
     out = tmp_path_factory.mktemp("smooth")
     specs = scenes(n_disk=200, roughness=0.0)
     references = reference_runs(specs, out)
-    return {name: compare(spec, out / name / "lammps", DEFAULTS, references[name],
-                          out / name / "reference") for name, spec in specs.items()}
+    return {
+        name: compare(
+            spec, out / name / "lammps", DEFAULTS, references[name], out / name / "reference"
+        )
+        for name, spec in specs.items()
+    }
 
 
 @pytest.fixture(scope="module")
@@ -35,8 +39,12 @@ def rough(tmp_path_factory):
     specs = scenes(n_disk=200)
     same_step = ReferenceOptions(integrator="verlet", dt=DEFAULTS.dt)
     twins = reference_runs(specs, out, options=same_step, label="reference_verlet")
-    return {name: compare(spec, out / name / "lammps", DEFAULTS, twins[name],
-                          out / name / "reference_verlet") for name, spec in specs.items()}
+    return {
+        name: compare(
+            spec, out / name / "lammps", DEFAULTS, twins[name], out / name / "reference_verlet"
+        )
+        for name, spec in specs.items()
+    }
 
 
 @pytest.mark.parametrize("name", list(scenes(n_disk=200)))
