@@ -12,10 +12,9 @@ import numpy as np
 
 from . import figures
 from .fits import bootstrap, fit_compliant, fit_walton, means, reduced_chi2
-from .theory import Compliant, compliant_beta, walton_beta
 from .result import MAX_DRIFT
 from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, near_the_ends, write_csv
-
+from .theory import Compliant, compliant_beta, walton_beta
 
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
 
@@ -86,7 +85,8 @@ def drift_section(rows: list[dict]) -> list[str]:
         "",
         f"{len(flagged)} of the {len(rows)} impacts have an energy drift (change of the total "
         "energy over the initial kinetic energy) above the study's threshold (`--max-drift`, "
-        f"column `drift_exceeded` of impacts.csv); the largest is {float(worst['energy_drift']):.3g} "
+        "column `drift_exceeded` of impacts.csv); the largest is "
+        f"{float(worst['energy_drift']):.3g} "
         f"at dt = {worst['dt']} R/c. Their time step is too large for them, and they are in the "
         f"tables and fits above. Where: {where(impacts)}.",
         "",
@@ -292,7 +292,8 @@ def results_page(
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
-        f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. Tables: `impacts.csv` (one row per impact), "
+        f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
+        "Tables: `impacts.csv` (one row per impact), "
         f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
         f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
         f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "

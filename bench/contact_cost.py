@@ -144,9 +144,8 @@ def main() -> None:
         f"## e and beta: segment contact against the pair variant\n\n{restitution}\n"
     )
     print(body)
-    print(
-        f"wrote {write_report('contact_cost', 'Contact: cost and pair variant', 'python bench/contact_cost.py', body)}"
-    )
+    title, command = "Contact: cost and pair variant", "python bench/contact_cost.py"
+    print(f"wrote {write_report('contact_cost', title, command, body)}")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """The tail of the energy drift: a study's worst impacts again at smaller steps.
 
-    python bench/drift_tail.py --impacts runs/paper/impacts.csv [--worst 24] [--dts 0.012 0.008 0.006 0.004]
+    python bench/drift_tail.py --impacts runs/paper/impacts.csv [--worst 24]
+                               [--dts 0.012 0.008 0.006 0.004]
 
 make bench chooses the time step on nine scenes; a study has thousands, and a
 few of them drift far more than those nine. This takes the impacts of a study
@@ -20,7 +21,6 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-
 from common import markdown_table, write_report
 
 from analysis.result import MAX_DRIFT

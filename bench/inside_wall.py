@@ -22,14 +22,13 @@ from pathlib import Path
 import numpy as np
 from matplotlib.path import Path as Polygon
 
+from analysis.dump import open_run
 from builder.cli import wall_points, wall_spring
 from builder.lammps_data import write_scene
 from builder.scene import DISK_INTERIOR, DISK_SURFACE, WALL_FIXED, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
 from runner.study import PRESETS
-
-from analysis.dump import open_run
 
 
 def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int) -> dict:

@@ -1,6 +1,7 @@
 """A large-resolution disk on several ranks: domain decomposition at scale.
 
-    python bench/large_disk.py [--n-disk 20000] [--ranks 1 2] [--time 1.6] [--no-decay-table] [--whole]
+    python bench/large_disk.py [--n-disk 20000] [--ranks 1 2] [--time 1.6]
+                               [--no-decay-table] [--whole]
 
 A disk of n_disk points (random lattice, 45 degrees, 0.1 c) on a wall at the
 same number density, run by lmp from the start of the approach into the
@@ -40,7 +41,6 @@ from builder.scene import Scene, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import run_lmp
 from runner.options import RunOptions
-
 
 ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")
 

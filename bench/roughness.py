@@ -64,7 +64,7 @@ def displacements(body: bodies.Body, kind: str) -> np.ndarray:
 
 
 def segment_steps(body: bodies.Body, kind: str) -> list[float]:
-    """Normal step between the ends of each segment that needed the fix, in units of sqrt(2) delta."""
+    """Normal step between the ends of each segment that needed the fix, in sqrt(2) delta."""
     heights = np.linalg.norm(body.points, axis=1) - 1.0 if kind == "disk" else body.points[:, 1]
     return [abs(heights[a] - heights[b]) / (np.sqrt(2.0) * DELTA) for a, b in body.steep]
 

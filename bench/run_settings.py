@@ -84,9 +84,8 @@ def main() -> None:
         + markdown_table(["setting", "steps", "s per impact", "% vs defaults", "e", "beta"], rows)
     )
     print(body)
-    print(
-        f"wrote {write_report('run_settings', 'Run settings', 'python bench/run_settings.py', body)}"
-    )
+    path = write_report("run_settings", "Run settings", "python bench/run_settings.py", body)
+    print(f"wrote {path}")
 
 
 if __name__ == "__main__":

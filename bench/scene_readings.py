@@ -31,7 +31,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-
 from common import ROOT, markdown_table, write_report
 
 from analysis.report import fit_all

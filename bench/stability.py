@@ -17,7 +17,6 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-
 from common import markdown_table, write_report
 
 from analysis.series import read_energies
@@ -132,9 +131,8 @@ def main() -> None:
         )
     )
     print(body)
-    print(
-        f"wrote {write_report('stability', 'Stability stress tests', 'python bench/stability.py', body)}"
-    )
+    path = write_report("stability", "Stability stress tests", "python bench/stability.py", body)
+    print(f"wrote {path}")
 
 
 if __name__ == "__main__":

@@ -75,7 +75,8 @@ def main() -> None:
                         worst = max(worst, gap)
                         print(
                             f"  missed re-contact: {name} seed {seed} gamma {gamma}: stopped at "
-                            f"{stopped['time_end']:.1f}, contact again at {series['time'][later][0]:.1f}, "
+                            f"{stopped['time_end']:.1f}, contact again at "
+                            f"{series['time'][later][0]:.1f}, "
                             f"e and beta change by {gap:.1e}",
                             flush=True,
                         )

@@ -62,7 +62,7 @@ def main() -> None:
     args = parser.parse_args()
     times: dict[str, list[float]] = {way: [] for way in WAYS}
     counts: dict[str, int] = {}
-    for repeat in range(args.repeats):
+    for _ in range(args.repeats):
         for k, (way, extra) in enumerate(WAYS.items()):
             seconds, counts[way] = run(f"bench_throughput_{k}", extra, args.samples, args.angles)
             times[way].append(seconds)

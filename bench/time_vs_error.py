@@ -21,7 +21,6 @@ import json
 from pathlib import Path
 
 import numpy as np
-
 from common import ROOT, markdown_table, median, write_report
 
 from builder.lammps_data import write_scene
@@ -135,9 +134,11 @@ def summary(rows: dict) -> list[dict]:
     out = []
     for label in labels:
         smooth = [
-            r for (l, s, _), r in rows.items() if l == label and s == "smooth" and "error" not in r
+            r
+            for (lab, s, _), r in rows.items()
+            if lab == label and s == "smooth" and "error" not in r
         ]
-        rough = [r for (l, s, _), r in rows.items() if l == label and s == "rough"]
+        rough = [r for (lab, s, _), r in rows.items() if lab == label and s == "rough"]
         failed = [r["error"] for r in rough if "error" in r]
         survived = [r for r in rough if "error" not in r]
         out.append(

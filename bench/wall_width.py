@@ -21,7 +21,6 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
-
 from common import markdown_table, write_report
 
 from builder.errors import BuildError

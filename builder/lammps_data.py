@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .contact_table import ensure_table, table_name
-from .scene import Scene, TYPE_NAMES
+from .scene import TYPE_NAMES, Scene
 
 # Decks run from the project's root and find the contact tables here.
 POTENTIALS = Path(__file__).resolve().parents[1] / "potentials"

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-
 from scipy.spatial import ConvexHull, Voronoi
 
 from builder.strips import StripSpec, make_strip, write_strip

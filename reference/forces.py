@@ -12,7 +12,6 @@ import scipy.sparse as sparse
 from .contact import polyline_contact
 from .data import System
 
-
 LIBRARY = Path(__file__).resolve().parents[1] / "build" / "libreference_springs.so"
 
 

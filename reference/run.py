@@ -197,7 +197,9 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
         try:
             force, contact, e_contact = stepper.step(x, v, force)
         except InsideWall as error:
-            raise Unstable(f"a disk point is inside the wall at time {step * dt:.4g}: {error}")
+            raise Unstable(
+                f"a disk point is inside the wall at time {step * dt:.4g}: {error}"
+            ) from error
         step += 1
         if step % options.every == 0:
             series.append(observe.row(step, step * dt, x, v, contact, e_contact))

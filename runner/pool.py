@@ -23,8 +23,8 @@ import collections
 import multiprocessing as mp
 import os
 import time
+from collections.abc import Callable, Sequence
 from multiprocessing.connection import wait
-from typing import Callable, Sequence
 
 from .stopping import as_worker
 
@@ -119,7 +119,8 @@ def run_jobs(
                                 worker,
                                 "error",
                                 crashed,
-                                f"the run ended its process (exit status {worker.process.exitcode})",
+                                "the run ended its process "
+                                f"(exit status {worker.process.exitcode})",
                             )
                             if rest:
                                 queued.appendleft(rest)

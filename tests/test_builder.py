@@ -18,7 +18,6 @@ from builder.geometry import distance_to_polyline
 from builder.network import _Mesh, constrain, outline_edges, unique_edges
 from builder.scene import DISK, SceneSpec, _sample_seeds, build_bodies, build_scene
 from runner.study import LATTICES
-
 from tests.helpers import ROOT, SMALL
 
 

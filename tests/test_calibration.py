@@ -21,7 +21,6 @@ from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch
 from calibration.table import RANDOM_STRIP, stretch_all
-
 from tests.helpers import SMALL
 
 

@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 from reference.contact import polyline_contact
-
-from tests.contact_case import A, CUTOFF, V0, lammps_forces, random_case
+from tests.contact_case import CUTOFF, V0, A, lammps_forces, random_case
 from tests.helpers import ROOT
 
 

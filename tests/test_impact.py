@@ -17,7 +17,6 @@ from builder.scene import SceneSpec, build_scene
 from runner.impact import run_impact, run_scene
 from runner.lammps_run import LammpsError, lammps_error
 from runner.options import RunOptions
-
 from tests.helpers import ROOT, SMALL, new_lammps
 
 

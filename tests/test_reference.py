@@ -10,7 +10,6 @@ from builder.scene import SceneSpec, build_scene
 from reference.run import ReferenceOptions, Stepper, advance, load_model, run_reference
 from runner.impact import run_scene
 from runner.options import RunOptions
-
 from tests.helpers import SMALL
 
 

@@ -12,7 +12,6 @@ import pytest
 from builder.bodies import triangular_spacing
 from builder.materials import calibrated
 from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
-
 from tests.helpers import ROOT, SMALL
 
 WALL_AREA = 8.0 * 2.0

@@ -10,7 +10,6 @@ from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.options import RunOptions
 from runner.stop_rule import disk_vibration, future_contact_free
-
 from tests.helpers import SMALL
 
 CUTOFF, MARGIN = 0.07, 0.01

@@ -16,7 +16,6 @@ import pytest
 
 from runner.pool import run_jobs
 from runner.study import Study, job_groups
-
 from tests.helpers import ROOT
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
@@ -200,8 +199,8 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     ), last
     page = (ROOT / "runs" / name / "results.md").read_text()
     assert (
-        "| the disk slid off the end of the wall before it rebounded | 1 | random 80.5 deg: seed 1 |"
-        in page
+        "| the disk slid off the end of the wall before it rebounded | 1 "
+        "| random 80.5 deg: seed 1 |" in page
     )
     assert "Made by `python -m runner study demo --name test_study_failed" in page
     assert "--max-drift 1e-09`" in page
