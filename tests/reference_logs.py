@@ -101,7 +101,9 @@ def thermo_rows(log: Path) -> np.ndarray:
     -------
     numpy.ndarray
         One row per thermo line (all runs of the log, headers left out), one
-        column per thermo keyword.
+        column per thermo keyword that every table of the log has (the deck
+        switches to fewer columns during its chunks; the first five, step,
+        time, ke, pe and the contact's energy, are in all).
     """
     rows, inside = [], False
     for line in log.read_text().splitlines():
@@ -113,7 +115,8 @@ def thermo_rows(log: Path) -> np.ndarray:
                 rows.append([float(w) for w in words])
             except ValueError:  # "Loop time of ...": the run's table ended
                 inside = False
-    return np.array(rows)
+    width = min((len(row) for row in rows), default=0)
+    return np.array([row[:width] for row in rows])
 
 
 def committed_log(nprocs: int) -> Path:
