@@ -275,7 +275,14 @@ def results_page(
     samples_done: int,
     fits_clear: dict | None = None,
     preset: str = "paper",
+    tables: str = "",
 ) -> str:
+    tables_where = (
+        f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
+        "makes this page again without the runs)"
+        if tables
+        else ""
+    )
     drifted = sum(str(r["drift_exceeded"]) == "True" for r in rows)
     drift_note = f"; {drifted} drifted above the energy threshold (below)" if drifted else ""
     samples = (
@@ -293,8 +300,9 @@ def results_page(
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
         f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
-        "Tables: `impacts.csv` (one row per impact), "
-        f"`means.csv` (means and standard errors per lattice and angle), `fits.json`. "
+        f"Tables{tables_where}: `impacts.csv` (one row per impact), "
+        "`means.csv` (means and standard errors per lattice and angle), `fits.json`, "
+        "`failed.csv`. "
         f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
         f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
         f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
@@ -412,7 +420,14 @@ def report(
     failed = [read_failure(j) for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
     info = json.loads((study.folder / "study.json").read_text())
     summary = render(
-        info, rows, failed, study.folder, page or study.folder / "results.md", resamples, preset
+        info,
+        rows,
+        failed,
+        study.folder,
+        page or study.folder / "results.md",
+        resamples,
+        preset,
+        shown_path(tables) if tables is not None else "",
     )
     if tables is not None:
         tables.mkdir(parents=True, exist_ok=True)
@@ -447,7 +462,23 @@ def report_from_tables(
             return list(csv.DictReader(handle))
 
     info = json.loads((tables / "study.json").read_text())
-    return render(info, read("impacts.csv"), read("failed.csv"), tables, page, resamples, preset)
+    return render(
+        info,
+        read("impacts.csv"),
+        read("failed.csv"),
+        tables,
+        page,
+        resamples,
+        preset,
+        shown_path(tables),
+    )
+
+
+def shown_path(path: Path) -> str:
+    """A folder as the page names it: from the project's root where it is inside."""
+    root = Path(__file__).resolve().parents[1]
+    path = Path(path).resolve()
+    return path.relative_to(root).as_posix() if path.is_relative_to(root) else str(path)
 
 
 def render(
@@ -458,6 +489,7 @@ def render(
     page: Path,
     resamples: int,
     preset: str,
+    tables: str = "",
 ) -> dict:
     """Tables into ``out``, the figures and the page (see ``report``)."""
     rows = sorted(rows, key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
@@ -488,6 +520,7 @@ def render(
             samples_done,
             fits_clear,
             preset,
+            tables,
         )
     )
     return {

@@ -277,9 +277,9 @@ def run_study_command(args) -> int:
         summary = report_from_tables(
             Path(args.from_tables), docs / "results.md", preset=args.preset
         )
-        print(
-            f"{summary['rows']} impacts, {summary['failed']} failed; results in {summary['page']}"
-        )
+        page = Path(summary["page"])
+        page = page.relative_to(Path.cwd()) if page.is_relative_to(Path.cwd()) else page
+        print(f"{summary['rows']} impacts, {summary['failed']} failed; results in {page}")
         return 0
     study = PRESETS[args.preset]
     changes = {

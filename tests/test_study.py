@@ -320,3 +320,22 @@ def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
     assert (truncated.parent / "result.json.corrupt").read_text() == '{"e": 0.3, "bet'
     assert (empty.parent / "result.json.corrupt").read_text() == "{}"
     assert table(name) == uninterrupted
+
+
+def test_the_page_comes_back_from_the_tables_alone(uninterrupted, tmp_path):
+    """report_from_tables remakes a study's page and means from impacts.csv,
+    failed.csv and study.json, with no run folder (docs/results/ for the paper)."""
+    from analysis.report import report_from_tables
+
+    folder = ROOT / "runs" / "test_study_whole"
+    tables = tmp_path / "tables"
+    tables.mkdir()
+    for name in ("impacts.csv", "failed.csv", "study.json"):
+        (tables / name).write_bytes((folder / name).read_bytes())
+    page = tmp_path / "results.md"
+    report_from_tables(tables, page, preset="demo")
+    remade = page.read_text()
+    where = re.search(r" \(in `[^`]*`, from which .*? without the runs\)", remade).group(0)
+    assert remade.replace(where, "") == (folder / "results.md").read_text()
+    assert (tables / "means.csv").read_text() == (folder / "means.csv").read_text()
+    assert (tables / "fits.json").read_text() == (folder / "fits.json").read_text()
