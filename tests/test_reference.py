@@ -14,6 +14,19 @@ from tests.helpers import SMALL
 
 
 @pytest.fixture(scope="module")
+def dense_model(tmp_path_factory):
+    """The first study's dense wall (the disk's density, springs for its c).
+
+    On the default wall, coarser and ten times stiffer, the energy error of
+    this test stops shrinking near 1e-5 at steps of 2e-3 and 1e-3 (measured:
+    1.09e-5 and 1.08e-5 with Verlet), so no order can be read off there.
+    """
+    spec = SceneSpec(gamma_deg=30.0, n_wall="density", wall_ka="same-c", **SMALL)
+    folder = write_scene(build_scene(spec), tmp_path_factory.mktemp("reference_dense"))
+    return load_model(folder, ReferenceOptions())
+
+
+@pytest.fixture(scope="module")
 def model(tmp_path_factory):
     folder = write_scene(
         build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path_factory.mktemp("reference")
@@ -44,7 +57,8 @@ def total_energy(model, x, v):
 
 
 @pytest.mark.parametrize("scheme, order", [("verlet", 2), ("forest-ruth", 4)])
-def test_energy_in_free_vibration_with_the_conservative_contact(model, scheme, order):
+def test_energy_in_free_vibration_with_the_conservative_contact(dense_model, scheme, order):
+    model = dense_model
     model.rule = "gradient"
     errors = []
     for dt in (4e-3, 2e-3):
