@@ -78,7 +78,9 @@ def main() -> None:
     body = (
         f"The {args.worst} impacts of `{args.impacts}` ({len(rows)} impacts) with the "
         "largest |energy drift| (the change of the total energy over the initial kinetic "
-        "energy), each run again at every step, with the study's other settings.\n\n"
+        "energy), each run again at every step, with the study's other settings. (The paper "
+        "study at dt = 0.012 is `python -m runner study paper --dt 0.012 --name "
+        "paper_dt012`.)\n\n"
         + markdown_table(["lattice", "seed", "gamma", *(f"dt = {dt:g}" for dt in args.dts)], table)
     )
     print(body)
