@@ -25,15 +25,13 @@ from __future__ import annotations
 import argparse
 import csv
 import itertools
-import json
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from common import ROOT, markdown_table, write_report
 
-from analysis.report import fit_all
+from analysis.report import failure_cause, fit_all, read_failure
 from analysis.table import NEAR_SIDE, collect, mean_rows, write_csv
 from runner.options import RunOptions
 from runner.study import Study, run_study
@@ -107,15 +105,6 @@ def distance_from_text(reading: tuple) -> int:
     return sum(a != b for a, b in zip(reading, LITERAL))
 
 
-def cause(message: str) -> str:
-    """A failure's cause without its numbers (atom, step, time)."""
-    text = re.sub(r"ERROR( on proc \d+)?: ", "", message)
-    text = re.sub(r"\b\d[\d.eE+-]*", "#", text)
-    return (
-        text.split(":")[0][:70] if "inside the wall" not in text else "a disk point inside the wall"
-    )
-
-
 def study_for(reading: tuple, lattice: str, args, samples: int | None = None) -> ReadingStudy:
     n_wall, wall_ka, wall_fixed = reading
     name = label(*reading) + ("" if lattice == "random" else f"_{lattice}")
@@ -136,15 +125,14 @@ def run_rows(study: ReadingStudy, reading: tuple) -> list[dict]:
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     for job in jobs:
-        failed = Path(job["folder"]) / "failed.json"
-        if failed.exists():
-            error = json.loads(failed.read_text())["error"]
+        if (Path(job["folder"]) / "failed.json").exists():
+            error = read_failure(job)["error"]
             rows.append(
                 {
                     "study_lattice": job["lattice"],
                     "seed": job["seed"],
                     "gamma_deg": job["gamma"],
-                    "error": cause(error),
+                    "error": failure_cause(error),
                 }
             )
     for row in rows:

@@ -143,30 +143,12 @@ def test_bad_reading_on_the_command_line(tmp_path, command, args, words):
 def test_a_study_records_its_reading_in_every_row():
     name = "test_study_reading"
     subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    options = (
+        "--lattices random --angles 2 --samples 1 --n-disk 200 "
+        "--n-wall 600 --wall-ka 2 --wall-fixed sides+bottom"
+    ).split()
     proc = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "runner",
-            "study",
-            "demo",
-            "--name",
-            name,
-            "--lattices",
-            "random",
-            "--angles",
-            "2",
-            "--samples",
-            "1",
-            "--n-disk",
-            "200",
-            "--n-wall",
-            "600",
-            "--wall-ka",
-            "2",
-            "--wall-fixed",
-            "sides+bottom",
-        ],
+        [sys.executable, "-m", "runner", "study", "demo", "--name", name, *options],
         cwd=ROOT,
         capture_output=True,
         text=True,
