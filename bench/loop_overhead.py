@@ -26,7 +26,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from common import ROOT, markdown_table, median, write_report
+from common import ROOT, loop_seconds, markdown_table, median, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -48,12 +48,6 @@ def breakdown(log: Path) -> dict[str, float]:
         if match.group(1) in total:
             total[match.group(1)] += float(match.group(3))  # the average over ranks
     return total
-
-
-def loop_seconds(log: Path) -> tuple[float, int]:
-    """Seconds and steps in LAMMPS's run loops, over every run of a log."""
-    found = re.findall(r"Loop time of ([\d.eE+-]+) on \d+ procs for (\d+) steps", log.read_text())
-    return sum(float(s) for s, _ in found), sum(int(n) for _, n in found)
 
 
 def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
