@@ -10,15 +10,13 @@ import subprocess
 from datetime import date
 from pathlib import Path
 
+from runner.study import cpu_name
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def machine() -> str:
-    cpu = "unknown CPU"
-    for line in Path("/proc/cpuinfo").read_text().splitlines():
-        if line.startswith("model name"):
-            cpu = line.split(":", 1)[1].strip()
-            break
+    cpu = cpu_name()
     lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout
     version = re.search(r"LAMMPS - (.*?) -", lmp) or re.search(r"Simulator - (.*)\n", lmp)
     return (
