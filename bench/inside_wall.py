@@ -76,7 +76,9 @@ def main() -> None:
         wall_fixed=args.wall_fixed,
     )
     scene = build_scene(spec)
-    options = replace(PRESETS["paper"].options, dt=args.dt, springs=args.springs)
+    options = replace(
+        PRESETS["paper"].options, dt=args.dt, every=25, check=100, springs=args.springs
+    )
     with tempfile.TemporaryDirectory() as tmp:
         folder = write_scene(scene, Path(tmp) / "scene", options.springs)
         run = dict(vars(options), dump_every=10, route="lmp")

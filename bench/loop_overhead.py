@@ -81,17 +81,17 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
         "(c) impact deck, as the study": (IMPACT_DECK, common),
-        f"(d) series every {5 * options.every}, not {options.every}": (
+        f"(d) series every {5 * options.every_steps}, not {options.every_steps}": (
             IMPACT_DECK,
             {
                 **common,
-                "every": str(5 * options.every),
-                "check": str(max(options.check, 5 * options.every)),
+                "every": str(5 * options.every_steps),
+                "check": str(max(options.check_steps, 5 * options.every_steps)),
             },
         ),
-        f"(d) checks every {options.check // 2}, not {options.check}": (
+        f"(d) checks every {options.check_steps // 2}, not {options.check_steps}": (
             IMPACT_DECK,
-            {**common, "check": str(options.check // 2)},
+            {**common, "check": str(options.check_steps // 2)},
         ),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),

@@ -80,7 +80,7 @@ KEEP_COLUMNS = (
 
 # The settings the committed table was run with: a step safe for every reading
 # (the stiffest walls have ten times the disk's ka), the springs of the time.
-RUN_OPTIONS = RunOptions(dt=0.004, every=25, springs="class2", route="python")
+RUN_OPTIONS = RunOptions(dt=0.004, every=25, check=100, springs="class2", route="python")
 
 
 @dataclass

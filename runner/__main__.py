@@ -18,7 +18,16 @@ from builder.cli import (
 from builder.errors import BuildError, InputError
 
 from .lammps_run import LammpsError
-from .options import CONTACTS, INTEGRATORS, ROUTES, RULES, SPRINGS, RunOptions
+from .options import (
+    CHECK_INTERVAL,
+    CONTACTS,
+    INTEGRATORS,
+    MAX_CHUNK_TIME,
+    ROUTES,
+    RULES,
+    SPRINGS,
+    RunOptions,
+)
 from .stopping import Stopped, stop_on_signals
 
 MAX_DRIFT_HELP = (
@@ -44,6 +53,14 @@ def add_run_arguments(parser) -> None:
         type=positive_float,
         default=defaults.dt,
         help=f"time step in R/c (default: {defaults.dt})",
+    )
+    group.add_argument(
+        "--check",
+        type=count(1),
+        default=defaults.check,
+        help="steps between checks whether the impact is over, a multiple of the "
+        f"series' rows; check * dt must be at most {MAX_CHUNK_TIME:g} R/c (default: the "
+        f"steps nearest {CHECK_INTERVAL:g} R/c, {defaults.check_steps} at the default dt)",
     )
     group.add_argument("--integrator", choices=INTEGRATORS, default=defaults.integrator)
     group.add_argument(
@@ -106,6 +123,7 @@ def add_run_arguments(parser) -> None:
 def options_from_args(args) -> RunOptions:
     return RunOptions(
         dt=args.dt,
+        check=args.check,
         integrator=args.integrator,
         nrespa=args.nrespa,
         contact=args.contact,

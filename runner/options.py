@@ -14,11 +14,15 @@ RULES = ("lever", "gradient")
 SPRINGS = SPRING_STYLES
 ROUTES = ("lmp", "python")
 MAX_CHUNK_TIME = 2.0  # R/c; the shortest contacts last about 9
+# Rows of series.dat and checks for the end are spaced in time, so that a
+# change of dt keeps what they resolve and what they cost per R/c.
+SERIES_INTERVAL = 0.08  # R/c between rows of series.dat
+CHECK_INTERVAL = 0.8  # R/c between checks whether the impact is over
 
 
 @dataclass
 class RunOptions:
-    dt: float = 0.008  # time step, R / c (docs/benchmarks/time_vs_error.md, drift_tail.md)
+    dt: float = 0.002  # time step, R / c (docs/benchmarks/time_vs_error.md)
     integrator: str = "verlet"
     nrespa: int = 2  # respa: spring steps per step
     contact: str = "segment"  # segment: the paper's contact; pair: the design card
@@ -26,8 +30,8 @@ class RunOptions:
     springs: str = DEFAULT_SPRINGS  # harmonic/quartic or class2: the model's quartic springs;
     # harmonic: no quartic
     tmax: float = 100.0  # give up after this time, R / c
-    every: int = 10  # steps between rows of series.dat
-    check: int = 100  # steps between checks whether the impact is over (0.8 R/c)
+    every: int = 0  # steps between rows of series.dat; 0: SERIES_INTERVAL's
+    check: int = 0  # steps between checks whether the impact is over; 0: CHECK_INTERVAL's
     dump_every: int = 0  # steps between dump frames; 0: no dump
     stop_rule: str = (
         "predict"  # predict (rigid-body extrapolation) or clearance (runner/stop_rule.py)
@@ -48,32 +52,49 @@ class RunOptions:
         require_choice("springs", self.springs, SPRINGS)
         require_positive("tmax", self.tmax)
         require_positive("max_drift", self.max_drift)
-        for name in ("every", "check", "nprocs"):
+        for name in ("every", "check"):
             value = getattr(self, name)
-            if not (isinstance(value, int) and value >= 1):
-                raise InputError(f"{name} must be an integer >= 1, got {value}")
+            if not (isinstance(value, int) and value >= 0):
+                raise InputError(
+                    f"{name} must be an integer >= 1, or 0 for the default, got {value}"
+                )
+        if not (isinstance(self.nprocs, int) and self.nprocs >= 1):
+            raise InputError(f"nprocs must be an integer >= 1, got {self.nprocs}")
+        every, check = self.every_steps, self.check_steps
         # the deck learns that the disk has touched from the contact energy at the
         # ends of its chunks: a chunk longer than a contact (9 R/c and more) could
         # hold it whole, and the run would never stop
-        if self.check * self.dt > MAX_CHUNK_TIME:
+        if check * self.dt > MAX_CHUNK_TIME:
             raise InputError(
                 f"check * dt must be at most {MAX_CHUNK_TIME:g} R/c (a chunk shorter "
-                f"than any contact), got {self.check} * {self.dt:g} = "
-                f"{self.check * self.dt:g}"
+                f"than any contact), got {check} * {self.dt:g} = "
+                f"{check * self.dt:g}; give a smaller check"
             )
-        if self.check % self.every:
-            raise InputError(f"check must be a multiple of every ({self.every}), got {self.check}")
+        if check % every:
+            raise InputError(f"check must be a multiple of every ({every}), got {check}")
         if not (isinstance(self.dump_every, int) and self.dump_every >= 0):
             raise InputError(f"dump_every must be an integer >= 0, got {self.dump_every}")
-        if self.dump_every and self.check % self.dump_every:
+        if self.dump_every and check % self.dump_every:
             raise InputError(
-                f"dump_every must divide check ({self.check}) so that the last "
+                f"dump_every must divide check ({check}) so that the last "
                 f"state is dumped, got {self.dump_every}"
             )
         require_choice("stop_rule", self.stop_rule, ("predict", "clearance"))
         require_choice("route", self.route, ROUTES)
         if self.route == "python" and self.nprocs != 1:
             raise InputError("nprocs must be 1 with route python (run MPI jobs through lmp)")
+
+    @property
+    def every_steps(self) -> int:
+        """Steps between rows of series.dat: every, or SERIES_INTERVAL's."""
+        return self.every or max(1, round(SERIES_INTERVAL / self.dt))
+
+    @property
+    def check_steps(self) -> int:
+        """Steps between checks for the end: check, or the multiple of every
+        nearest CHECK_INTERVAL."""
+        every = self.every_steps
+        return self.check or every * max(1, round(CHECK_INTERVAL / (every * self.dt)))
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -93,9 +114,8 @@ class RunOptions:
             "dump_every",
             "stop_rule",
         )
+        values = {**self.as_dict(), "every": self.every_steps, "check": self.check_steps}
         return {
-            name: repr(getattr(self, name))
-            if isinstance(getattr(self, name), float)
-            else str(getattr(self, name))
+            name: repr(values[name]) if isinstance(values[name], float) else str(values[name])
             for name in names
         }
