@@ -68,14 +68,14 @@ class SceneSpec:
     n_disk: int = 800  # target number of points in the disk
     # The wall's reading (MODEL.md section 8) that agrees best with the paper's
     # facts: docs/model.md, docs/benchmarks/scene_readings.md.
-    n_wall: int | str = 1600  # points in the wall, or "density": the disk's number density
+    n_wall: int | str = WALL_DENSITY  # points in the wall, or "density": the disk's number density
     roughness: float = 0.03  # std of surface displacement, in R
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
     kb_over_ka: float = 1e-3
-    wall_fixed: str = "sides"
+    wall_fixed: str = "sides+bottom"
     wall_width: float = 8.0  # in R
     wall_height: float = 2.0  # in R
-    wall_ka: float | str = 10.0  # wall's ka over the disk's, or "same-c": the disk's wave speed
+    wall_ka: float | str = 1.0  # wall's ka over the disk's, or "same-c": the disk's wave speed
     contact_a: float = 300.0  # decay rate of the contact, a R
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings

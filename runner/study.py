@@ -89,7 +89,7 @@ class Study:
     n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
     wall_ka: float | str = SceneSpec.wall_ka
     wall_fixed: str = SceneSpec.wall_fixed
-    options: RunOptions = field(default_factory=lambda: RunOptions(every=25, route="python"))
+    options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
 
     @property
     def folder(self) -> Path:

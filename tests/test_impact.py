@@ -214,6 +214,7 @@ def test_unstable_run_stops_without_a_result(small_scene_dir, tmp_path):
     # 100-step chunk would be longer than a contact
     proc = runner_cli("run", str(folder), "--dt", "0.1")
     assert proc.returncode == 2 and "check * dt must be at most 2 R/c" in proc.stderr
+    assert "give a smaller check" in proc.stderr
     assert not (folder / "result.json").exists()
 
 
@@ -229,9 +230,16 @@ def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
     """On the shortest wall at the most grazing angle the disk reaches the
     wall's end while still pressing into it; the run must say so at once
     rather than wait for tmax, and record nothing."""
-    # the dense wall of the first study: on the default, stiffer wall the disk
-    # leaves before it reaches the 4 R wall's end
-    spec = SceneSpec(gamma_deg=80.5, wall_width=4.0, n_wall="density", wall_ka="same-c", **SMALL)
+    # the dense wall of the first study, held at its sides only: on stiffer
+    # walls the disk leaves before it reaches the 4 R wall's end
+    spec = SceneSpec(
+        gamma_deg=80.5,
+        wall_width=4.0,
+        n_wall="density",
+        wall_ka="same-c",
+        wall_fixed="sides",
+        **SMALL,
+    )
     folder = write_scene(build_scene(spec), tmp_path / "short_wall")
     with pytest.raises(LammpsError, match="slid off the end of the wall"):
         run_scene(folder, RunOptions())
@@ -260,7 +268,7 @@ def test_one_and_two_ranks_agree(tmp_path, gamma, bound):
 def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     """The guard flags and warns of a drift above --max-drift, naming dt; below
     it, it stays silent. (The default 0.05 sits above the drift of the paper
-    study's worst impacts at the default dt = 0.008, docs/benchmarks/drift_tail.md.)"""
+    study's worst impacts at the default dt, docs/benchmarks/drift_tail.md.)"""
     out = tmp_path / "coarse"
     proc = runner_cli(
         "impact", "--gamma", "60", "--seed", "3", "--max-drift", "1e-5", "--out", str(out)
@@ -268,7 +276,7 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     assert proc.returncode == 0, proc.stderr
     warning = proc.stderr.strip().splitlines()
     assert len(warning) == 1 and "warning: energy drift" in warning[0]
-    assert "dt = 0.008" in warning[0] and "--max-drift 1e-05" in warning[0]
+    assert f"dt = {RunOptions().dt:g}" in warning[0] and "--max-drift 1e-05" in warning[0]
     result = json.loads((out / "result.json").read_text())
     assert result["drift_exceeded"] is True and abs(result["energy_drift"]) > result["max_drift"]
     # the default threshold: no warning, no flag
@@ -279,14 +287,17 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
 
 
 def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
-    """2.5 times the default step is beyond the stability of the stiff wall's springs:
-    the run stops at once, writes no result, and the error names dt."""
+    """dt = 0.05 R/c (with chunks of 40 steps, within 2 R/c) is beyond the
+    stability of the springs: the run stops within a chunk, writes no result,
+    and the error names dt and the default."""
     out = tmp_path / "unstable"
-    proc = runner_cli("impact", "--gamma", "60", "--seed", "3", "--dt", "0.02", "--out", str(out))
+    proc = runner_cli(
+        "impact", "--gamma", "60", "--seed", "3", "--dt", "0.05", "--check", "40", "--out", str(out)
+    )
     assert proc.returncode == 1
     error = proc.stderr.strip().splitlines()
     assert len(error) == 1 and "the run went unstable" in error[0]
-    assert "dt = 0.02 R/c; the default, 0.008" in error[0]
+    assert f"dt = 0.05 R/c; the default, {RunOptions().dt:g}" in error[0]
     assert not (out / "result.json").exists()
 
 
@@ -300,7 +311,7 @@ def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
 @pytest.mark.parametrize(
     "changes, words",
     [
-        ({"check": 1000}, "check * dt must be at most 2 R/c"),
+        ({"check": 2000}, "check * dt must be at most 2 R/c"),
         ({"check": 30, "every": 25}, "check must be a multiple of every (25)"),
         ({"dt": -1.0}, "dt must be > 0"),
     ],
@@ -308,3 +319,22 @@ def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
 def test_bad_run_options_are_refused(changes, words):
     with pytest.raises(InputError, match=re.escape(words)):
         RunOptions(**changes).validate()
+
+
+@pytest.mark.parametrize("dt", [1e-4, 1e-3, 2e-3, 3e-3, 8e-3, 0.02, 0.05, 0.3])
+def test_rows_and_checks_keep_their_spacing_in_time_at_any_step(dt):
+    """Left at 0, every and check follow dt: rows 0.08 R/c apart and checks
+    the multiple of every nearest 0.8 R/c, so any valid dt runs without
+    choosing them, and the deck gets the steps."""
+    options = RunOptions(dt=dt)
+    options.validate()
+    every, check = options.every_steps, options.check_steps
+    assert check % every == 0 and check * dt <= 2.0
+    if dt <= 0.008:  # where a row is many steps, the spacing is the interval's to a step
+        assert abs(every * dt - 0.08) <= dt / 2
+        assert abs(check * dt - 0.8) <= every * dt / 2
+    variables = options.deck_variables()
+    assert (variables["every"], variables["check"]) == (str(every), str(check))
+    # set by hand, they are kept
+    fixed = RunOptions(dt=dt, every=1, check=1)
+    assert (fixed.every_steps, fixed.check_steps) == (1, 1)

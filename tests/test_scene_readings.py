@@ -63,17 +63,22 @@ def test_held_points_are_the_reading_s(wall_fixed, rows):
 
 
 def test_the_default_scene_is_the_chosen_reading():
-    """1,600 wall points, ten times the disk's ka, the sides held: the reading
-    chosen from the 12-sample table (docs/model.md says why it is due to change)."""
+    """The wall at the disk's number density, the disk's ka, its sides and bottom
+    held: the reading MODEL.md section 8's rule picks from the committed table
+    (docs/benchmarks/scene_readings.md, docs/model.md)."""
     spec = SceneSpec()
-    assert (spec.n_wall, spec.wall_ka, spec.wall_fixed) == (1600, 10.0, "sides")
+    assert (spec.n_wall, spec.wall_ka, spec.wall_fixed) == ("density", 1.0, "sides+bottom")
     from runner.study import PRESETS
 
     for study in PRESETS.values():
-        assert (study.n_wall, study.wall_ka, study.wall_fixed) == (1600, 10.0, "sides")
-    info = build_scene(SceneSpec(gamma_deg=30.0)).info
-    assert abs(info["n_wall_points"] - 1600) < 0.05 * 1600
-    assert info["ka_wall"] == pytest.approx(10.0 * info["ka_disk"], rel=1e-12)
+        assert (study.n_wall, study.wall_ka, study.wall_fixed) == ("density", 1.0, "sides+bottom")
+    scene = build_scene(SceneSpec(gamma_deg=30.0))
+    info = scene.info
+    # the disk's number density: points per area equal within the sampling's scatter
+    disk_density = info["n_disk_points"] / np.pi
+    wall_density = info["n_wall_points"] / (spec.wall_width * spec.wall_height)
+    assert wall_density == pytest.approx(disk_density, rel=0.05)
+    assert info["ka_wall"] == pytest.approx(info["ka_disk"], rel=1e-12)
     proc = subprocess.run(
         [sys.executable, "-m", "runner", "impact", "--help"],
         cwd=ROOT,
@@ -81,7 +86,9 @@ def test_the_default_scene_is_the_chosen_reading():
         text=True,
         check=True,
     )
-    assert "(default: 1600)" in proc.stdout and "(default: 10)" in proc.stdout
+    help_text = " ".join(proc.stdout.split())
+    for default in ("(default: density)", "(default: 1)", "(default: sides+bottom)"):
+        assert default in help_text
 
 
 @pytest.mark.parametrize(

@@ -186,6 +186,8 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
         "density",
         "--wall-ka",
         "same-c",
+        "--wall-fixed",
+        "sides",
         "--max-drift",
         "1e-9",
     ]
