@@ -225,7 +225,8 @@ def wall_end_section(means: list[dict], fits_clear: dict, wall_width: float) -> 
     lines += [
         "",
         "On a 16 R wall no contact came near a side, and the mean e moved by 0.03 to "
-        "0.06 at 63.5 to 80.5 degrees, beta by at most 0.05 (random lattice, 12 samples: "
+        "0.06 at 63.5 to 80.5 degrees, beta by at most 0.05 (random lattice, 12 samples, "
+        "on the first study's wall, the disk's density held at its sides: "
         "`python bench/wall_width.py`, docs/benchmarks/wall_width.md, docs/model.md). "
         "Walton's fit over the angles where at most 10 % of the contacts came near a side, "
         "the results that MODEL.md's 8 R wall gives where its condition holds:",
