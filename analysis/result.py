@@ -12,11 +12,9 @@ from .series import read_energies, read_series
 
 # The energy drift (change of the total energy over the initial kinetic
 # energy) above which a run counts as inaccurate: its time step is too large
-# for the scene. Chosen on the first study's wall (5 times its largest drift at
-# dt = 4e-3). On the default wall at dt = 8e-3 the paper study's drifts have a
-# median of 2.3e-4 and 99 % below 9.2e-3, and its largest, 5.0e-2, is this
-# threshold itself: a near-normal tail that no smaller step removes
-# (docs/benchmarks/drift_tail.md, time_vs_error.md).
+# for the scene. On the default scene at the default dt = 2e-3 the paper
+# study's 6,400 drifts have a median of 9.4e-5, 99 % below 4.7e-3 and the
+# largest 2.1e-2; dt = 0.02 drifts 0.13 (docs/benchmarks/time_vs_error.md).
 MAX_DRIFT = 0.05
 # What the study's tables read from every result.json.
 REQUIRED = (

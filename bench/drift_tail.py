@@ -1,7 +1,7 @@
 """The tail of the energy drift: a study's worst impacts again at smaller steps.
 
     python bench/drift_tail.py --impacts runs/paper/impacts.csv [--worst 24]
-                               [--dts 0.012 0.008 0.006 0.004]
+                               [--dts 0.003 0.002 0.001]
 
 make bench chooses the time step on nine scenes; a study has thousands, and a
 few of them drift far more than those nine. This takes the impacts of a study
@@ -36,7 +36,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--impacts", type=Path, required=True, help="a study's impacts.csv")
     parser.add_argument("--worst", type=int, default=24, help="impacts to rerun (default: 24)")
-    parser.add_argument("--dts", type=float, nargs="+", default=[0.012, 0.008, 0.006, 0.004])
+    parser.add_argument("--dts", type=float, nargs="+", default=[0.003, 0.002, 0.001])
     args = parser.parse_args()
 
     with args.impacts.open() as handle:
@@ -75,12 +75,12 @@ def main() -> None:
         (f"above {MAX_DRIFT:g}", MAX_DRIFT),
     ):
         table.append([f"**{name}**", "", "", *(str(int(n)) for n in (drift > bound).sum(axis=0))])
+    study_dts = ", ".join(sorted({f"{float(r['dt']):g}" for r in rows}))
     body = (
-        f"The {args.worst} impacts of `{args.impacts}` ({len(rows)} impacts) with the "
-        "largest |energy drift| (the change of the total energy over the initial kinetic "
-        "energy), each run again at every step, with the study's other settings. (The paper "
-        "study at dt = 0.012 is `python -m runner study paper --dt 0.012 --name "
-        "paper_dt012`.)\n\n"
+        f"The {args.worst} impacts of `{args.impacts}` ({len(rows)} impacts, run at dt = "
+        f"{study_dts}) with the largest |energy drift| (the change of the total energy over "
+        "the initial kinetic energy), each run again at every step, with the study's other "
+        "settings.\n\n"
         + markdown_table(["lattice", "seed", "gamma", *(f"dt = {dt:g}" for dt in args.dts)], table)
     )
     print(body)

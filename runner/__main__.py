@@ -33,7 +33,7 @@ from .stopping import Stopped, stop_on_signals
 MAX_DRIFT_HELP = (
     "flag a run whose energy drift (change of the total energy over the initial "
     "kinetic energy) exceeds this: its time step is too large (default: {:g}; "
-    "99 %% of the paper study below 9.2e-3 at the default dt; docs/benchmarks/drift_tail.md)"
+    "99 %% of the paper study below 4.7e-3 at the default dt; docs/benchmarks/time_vs_error.md)"
 )
 
 
