@@ -3,11 +3,19 @@ reference log, decks/log.<date>.impact.g++.1 (``make reference-logs``).
 
 Tolerance: every thermo value within 1e-6 of its column's largest magnitude,
 with the same steps. LAMMPS prints 8 significant digits, so identical runs
-agree to about 5e-9 of that scale; the committed one- and two-rank logs, whose
-forces are summed in different orders (as another compiler or CPU would),
-agree to 1e-8 over the whole impact. 1e-6 leaves a factor of 100 for such
-rounding differences, and any change of the scene, the deck or the contact
-style moves these values by 1e-3 or more.
+agree to about 5e-9 of that scale, and any change of the scene, the deck or
+the contact style moves these values by 1e-3 or more.
+
+The committed one- and two-rank logs sum their forces in different orders
+(as another compiler or CPU would). The rough contact on the default wall is
+chaotic: that round-off grows about tenfold every 100 steps once the disk
+presses in, from below the printed digits to 1e-6 of the scale at t = 6.2
+R/c and to 9e-2 at 7.3 (measured on the committed logs; a 1e-9 R move of the
+disk's points spreads e by 1e-2, docs/validation_table.md). So the two logs
+are compared to 1e-6 over the first CHAOS_FREE_TIME of the impact, the
+approach and the loading, and must stop at the same step; the two-rank
+agreement of a whole impact is tested on a smooth disk, which is not
+chaotic (tests/test_impact.py).
 """
 
 from __future__ import annotations
@@ -17,6 +25,7 @@ import numpy as np
 from tests.reference_logs import build_scene, committed_log, run_impact, thermo_rows
 
 TOLERANCE = 1e-6
+CHAOS_FREE_TIME = 5.0  # R/c; see above
 
 
 def assert_same_rows(ours: np.ndarray, reference: np.ndarray) -> None:
@@ -36,4 +45,8 @@ def test_fresh_run_matches_the_reference_log(tmp_path):
 
 
 def test_one_and_two_rank_reference_logs_agree():
-    assert_same_rows(thermo_rows(committed_log(2)), thermo_rows(committed_log(1)))
+    one, two = thermo_rows(committed_log(1)), thermo_rows(committed_log(2))
+    assert one.shape == two.shape and np.array_equal(one[:, 0], two[:, 0]), "different steps"
+    early = one[:, 1] <= CHAOS_FREE_TIME
+    assert early.sum() > 20 and (one[early, 4] > 0).any()  # rows well into the contact
+    assert_same_rows(two[early], one[early])
