@@ -41,7 +41,7 @@ DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 # The contact is cut off at the spacing; exp(-a l) must have died out by then,
 # or every point that crosses the cutoff jumps in energy by V0 exp(-a cutoff).
 # The study has 20 decay lengths in it (a R = 300, 800 points); a 20,000-point
-# disk at a R = 300 has 4, and its energy grew by 46 % into the contact.
+# disk at a R = 300 has 4, and its energy grew by 15 % into the contact (docs/contact.md).
 MIN_CUTOFF_DECAYS = 15.0
 
 
