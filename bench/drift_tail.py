@@ -1,4 +1,4 @@
-"""The tail of the energy drift: a study's worst impacts again at smaller steps.
+"""The tail of the energy drift: a study's worst impacts again at other steps.
 
     python bench/drift_tail.py --impacts runs/paper/impacts.csv [--worst 24]
                                [--dts 0.003 0.002 0.001]

@@ -1,6 +1,7 @@
 """Why a run stops with "a disk point is inside the wall": the geometry just before.
 
-    python bench/inside_wall.py --n-wall 800 --wall-ka same-c --seed 1 --gamma 61.6996
+    python bench/inside_wall.py --n-wall 800 --wall-ka same-c --wall-fixed sides --seed 1 \
+        --gamma 61.6996
 
 Reruns one impact with a dump every 10 steps and, for the last frames before
 the stop, reports what could have put a disk point inside the wall:

@@ -11,8 +11,8 @@ time). "2 runs at once" is two single-scene runs started together, one per
 core, which is what the study's two workers do.
 
 The copies run without contact: the segment contact knows one wall polyline,
-and its cost is 3 to 5 % of a step (docs/benchmarks/contact_cost.md), so it
-cannot change the comparison.
+and its cost is about 2 % of a step (docs/benchmarks/loop_overhead.md), so
+it cannot change the comparison.
 """
 
 from __future__ import annotations

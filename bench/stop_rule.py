@@ -6,7 +6,9 @@ Every lattice of the study at angles from 5.7 to 80.5 degrees, several seeds.
 Each impact runs twice: stopped by the predictive rule, and continued to
 t = 100 R/c. A contact in the long run after the predictive stop is a missed
 re-contact; the table counts them and how much they change e and beta, and
-the steps each way. Writes docs/benchmarks/stop_rule.md.
+the steps each way. Writes docs/benchmarks/<--name>.md; the committed tables
+are `--vibration 1 --name stop_rule_vibration` and `--vibration 0 --slack
+0.0337 --name stop_rule_fixed_margin`.
 """
 
 from __future__ import annotations

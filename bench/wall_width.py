@@ -1,6 +1,6 @@
 """Does the wall's width change grazing impacts? The 8 R wall against a wider one.
 
-    python bench/wall_width.py [--seeds 12] [--widths 8 14] [--angles 63.52 73.9 80.5]
+    python bench/wall_width.py [--seeds 12] [--widths 8 16] [--angles 63.52 73.9 80.5]
 
 At grazing angles the disk slides several R during contact, and on MODEL.md's
 8 R wall its centre can pass an end of the wall, where the wall is held
@@ -34,7 +34,7 @@ def one_impact(args: tuple[float, float, int, str]) -> dict:
     width, gamma, seed, folder = args
     spec = SceneSpec(seed=seed, gamma_deg=gamma, wall_width=width)
     try:
-        result = run_impact(spec, folder, RunOptions(every=25))
+        result = run_impact(spec, folder, RunOptions())
     except (BuildError, LammpsError) as error:
         return {"width": width, "gamma": gamma, "seed": seed, "error": str(error)}
     return {
@@ -53,7 +53,7 @@ def mean_se(values: list[float]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=12)
-    parser.add_argument("--widths", type=float, nargs="+", default=[8.0, 14.0])
+    parser.add_argument("--widths", type=float, nargs="+", default=[8.0, 16.0])
     parser.add_argument("--angles", type=float, nargs="+", default=[63.52, 73.9, 80.5])
     parser.add_argument("--workers", type=int, default=2)
     # an impact that fails (a LAMMPS error, or a wall the builder refuses) is counted, not fatal
