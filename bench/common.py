@@ -13,6 +13,8 @@ from pathlib import Path
 from runner.study import cpu_name
 
 ROOT = Path(__file__).resolve().parents[1]
+# decks/setup.lmp's dynamics for a fixed number of steps, with or without contact
+BENCH_DECK = ROOT / "bench" / "contact_cost.lmp"
 
 
 def machine() -> str:
@@ -34,6 +36,17 @@ def loop_seconds(log: Path) -> tuple[float, int]:
         seconds += float(match.group(1))
         steps += int(match.group(2))
     return seconds, steps
+
+
+def timer_seconds(log: Path) -> dict[str, float]:
+    """Loop time and each section of LAMMPS's timer breakdown (Bond, Pair, Neigh,
+    ...: the average over ranks; Other has no min column), in seconds summed
+    over every run of a log."""
+    text = log.read_text()
+    total = {"loop": loop_seconds(log)[0]}
+    for match in re.finditer(r"^(\w+)\s*\|\s*[\d.eE+-]*\s*\|\s*([\d.eE+-]+)", text, re.M):
+        total[match.group(1)] = total.get(match.group(1), 0.0) + float(match.group(2))
+    return total
 
 
 def median(values) -> float:

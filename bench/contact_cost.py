@@ -19,12 +19,12 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from common import ROOT, markdown_table, median, write_report
+from common import BENCH_DECK, ROOT, markdown_table, median, timer_seconds, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError
+from runner.lammps_run import LammpsError, command_line
 from runner.options import RunOptions
 
 CONTACTS = ("none", "pair", "segment")
@@ -34,36 +34,9 @@ ANGLES = (5.7, 26.6, 55.0, 80.4)
 
 def timed_run(scene: Path, contact: str, steps: int) -> dict[str, float]:
     log = scene / f"bench_{contact}.log"
-    subprocess.run(
-        [
-            "lmp",
-            "-in",
-            "bench/contact_cost.lmp",
-            "-var",
-            "scene",
-            str(scene),
-            "-var",
-            "contact",
-            contact,
-            "-var",
-            "steps",
-            str(steps),
-            "-log",
-            str(log),
-            "-screen",
-            "none",
-            "-nocite",
-        ],
-        cwd=ROOT,
-        check=True,
-    )
-    text = log.read_text()
-    loop = float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1))
-    sections = {
-        name: float(re.search(rf"^{name}\s*\|\s*([\d.eE+-]+)", text, re.M).group(1))
-        for name in ("Pair", "Neigh", "Bond")
-    }
-    return {"loop": loop, **sections}
+    variables = {"scene": str(scene), "contact": contact, "steps": str(steps)}
+    subprocess.run(["lmp", *command_line(variables, log, BENCH_DECK)], cwd=ROOT, check=True)
+    return timer_seconds(log)
 
 
 def cost_table(scene: Path, repeats: int, steps: int) -> str:

@@ -21,12 +21,19 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import tempfile
 import time
 from pathlib import Path
 
-from common import ROOT, loop_seconds, markdown_table, median, write_report
+from common import (
+    BENCH_DECK,
+    ROOT,
+    loop_seconds,
+    markdown_table,
+    median,
+    timer_seconds,
+    write_report,
+)
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -34,20 +41,8 @@ from runner.impact import run_scene
 from runner.lammps_run import command_line
 from runner.study import PRESETS
 
-BENCH_DECK = ROOT / "bench" / "contact_cost.lmp"
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
 SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
-
-
-def breakdown(log: Path) -> dict[str, float]:
-    """Seconds per section of LAMMPS's timer, summed over every run of a log."""
-    total = dict.fromkeys(SECTIONS, 0.0)
-    for match in re.finditer(
-        r"^(\w+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)", log.read_text(), re.MULTILINE
-    ):
-        if match.group(1) in total:
-            total[match.group(1)] += float(match.group(3))  # the average over ranks
-    return total
 
 
 def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
@@ -116,9 +111,9 @@ def main() -> None:
             for name, (deck, variables) in variants(folder, steps).items():
                 log = Path(tmp) / "log.lammps"
                 wall = run_deck(deck, variables, log)
-                loop, done = loop_seconds(log)
+                done = loop_seconds(log)[1]
                 runs.setdefault(name, []).append(
-                    {"wall": wall, "loop": loop, "steps": done, **breakdown(log)}
+                    {"wall": wall, "steps": done, **timer_seconds(log)}
                 )
                 print(f"repeat {repeat + 1} {name}: {done / wall:,.0f} steps/s", flush=True)
 

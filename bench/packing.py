@@ -18,43 +18,27 @@ it cannot change the comparison.
 from __future__ import annotations
 
 import argparse
-import re
 import subprocess
 import tempfile
 from pathlib import Path
 
-from common import ROOT, markdown_table, median, write_report
+from common import BENCH_DECK, ROOT, markdown_table, median, timer_seconds, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import mpi_environment, mpi_launcher
+from runner.lammps_run import command_line, mpi_environment, mpi_launcher
 
 SECTIONS = ("Bond", "Neigh", "Modify")
 
 
 def start(scene: Path, copies: int, ranks: int, steps: int, log: Path) -> subprocess.Popen:
-    command = mpi_launcher(ranks) + [
-        "lmp",
-        "-in",
-        "bench/contact_cost.lmp",
-        "-var",
-        "scene",
-        str(scene),
-        "-var",
-        "contact",
-        "none",
-        "-var",
-        "steps",
-        str(steps),
-        "-var",
-        "copies",
-        str(copies),
-        "-log",
-        str(log),
-        "-screen",
-        "none",
-        "-nocite",
-    ]
+    variables = {
+        "scene": str(scene),
+        "contact": "none",
+        "steps": str(steps),
+        "copies": str(copies),
+    }
+    command = mpi_launcher(ranks) + ["lmp", *command_line(variables, log, BENCH_DECK)]
     return subprocess.Popen(
         command,
         cwd=ROOT,
@@ -63,16 +47,6 @@ def start(scene: Path, copies: int, ranks: int, steps: int, log: Path) -> subpro
         stderr=subprocess.PIPE,
         text=True,
     )
-
-
-def loop_time(log: Path) -> dict[str, float]:
-    text = log.read_text()
-    out = {"loop": float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1))}
-    for name in SECTIONS:
-        out[name] = float(
-            re.search(rf"^{name}\s*\|\s*[\d.eE+-]+\s*\|\s*([\d.eE+-]+)", text, re.M).group(1)
-        )
-    return out
 
 
 def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) -> dict:
@@ -84,7 +58,7 @@ def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) 
         _, errors = proc.communicate()
         if proc.returncode != 0:
             raise RuntimeError(f"lmp failed: {errors.strip()[-300:]}")
-    times = [loop_time(log) for log in logs]
+    times = [timer_seconds(log) for log in logs]
     rate = sum(copies * steps / t["loop"] for t in times)
     shares = {name: times[0][name] / times[0]["loop"] for name in SECTIONS}
     return {"rate": rate, **shares}

@@ -22,10 +22,11 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from common import ROOT, machine, markdown_table, median
+from common import BENCH_DECK, ROOT, machine, markdown_table, median, timer_seconds
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
+from runner.lammps_run import command_line
 
 STYLES = ("class2", "harmonic/quartic")
 # the default wall, the literal 800-point one and the 1,600-point one (the default before)
@@ -40,40 +41,11 @@ BEGIN, END = "<!-- table: bench/spring_cost.py -->", "<!-- /table -->"
 
 
 def timed_run(scene: Path, springs: str, steps: int, log: Path) -> dict[str, float]:
-    """Loop time, bond count and each timer section's share (%) of one run."""
-    subprocess.run(
-        [
-            "lmp",
-            "-in",
-            "bench/contact_cost.lmp",
-            "-var",
-            "scene",
-            str(scene),
-            "-var",
-            "springs",
-            springs,
-            "-var",
-            "contact",
-            "none",
-            "-var",
-            "steps",
-            str(steps),
-            "-log",
-            str(log),
-            "-screen",
-            "none",
-            "-nocite",
-        ],
-        cwd=ROOT,
-        check=True,
-    )
-    text = log.read_text()
-    run = {
-        "loop": float(re.search(r"Loop time of ([\d.eE+-]+)", text).group(1)),
-        "bonds": int(re.search(r"^\s*(\d+) bonds", text, re.M).group(1)),
-    }
-    for name in SECTIONS:
-        run[name] = float(re.search(rf"^{name}\s*\|.*\|\s*([\d.eE+-]+)\s*$", text, re.M).group(1))
+    """Loop time, bond count and each timer section's seconds of one run."""
+    variables = {"scene": str(scene), "springs": springs, "contact": "none", "steps": str(steps)}
+    subprocess.run(["lmp", *command_line(variables, log, BENCH_DECK)], cwd=ROOT, check=True)
+    run = timer_seconds(log)
+    run["bonds"] = int(re.search(r"^\s*(\d+) bonds", log.read_text(), re.M).group(1))
     return run
 
 
@@ -88,17 +60,14 @@ def scene_rows(
                 timed_run(folders[springs], springs, steps, folders[springs] / f"bench_{k}.log")
             )
 
-    def bond_seconds(run: dict[str, float]) -> float:
-        return run["loop"] * run["Bond"] / 100.0
-
     old, new = runs["class2"], runs["harmonic/quartic"]
-    bond_ratio = median([bond_seconds(b) / bond_seconds(a) for a, b in zip(old, new)])
+    bond_ratio = median([b["Bond"] / a["Bond"] for a, b in zip(old, new)])
     loop_ratio = median([b["loop"] / a["loop"] for a, b in zip(old, new)])
     rows = []
     for springs in STYLES:
         r = runs[springs]
         bonds = r[0]["bonds"]
-        ns = median([bond_seconds(x) for x in r]) / (steps * bonds) * 1e9
+        ns = median([x["Bond"] for x in r]) / (steps * bonds) * 1e9
         ratios = ["1", "1"] if springs == "class2" else [f"{bond_ratio:.2f}", f"{loop_ratio:.2f}"]
         rows.append(
             [
@@ -107,7 +76,7 @@ def scene_rows(
                 f"{atoms:,}",
                 f"{bonds:,}",
                 f"{steps / median([x['loop'] for x in r]):,.0f}",
-                *[f"{median([x[name] for x in r]):.1f}" for name in SECTIONS],
+                *[f"{median([100 * x[name] / x['loop'] for x in r]):.1f}" for name in SECTIONS],
                 f"{ns:.2f}",
                 *ratios,
             ]

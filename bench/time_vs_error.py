@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
@@ -101,9 +102,17 @@ def run_one(kind: str, options, folder: Path) -> dict:
 def measure(out: Path, only: list[str] | None) -> dict:
     smooth, rough = scenes(roughness=0.0), scenes()
     references = reference_runs(smooth, out / "smooth")
-    # Rows are kept as they come, so a killed sweep resumes where it stopped.
+    # Rows are kept as they come, so a killed sweep resumes where it stopped;
+    # rows of other scenes (a changed default) are not resumed but run again.
     partial = out / "rows.partial.json"
-    done = json.loads(partial.read_text()) if partial.exists() else {}
+    these = {
+        f"{s}|{n}": asdict(spec)
+        for s, specs in (("smooth", smooth), ("rough", rough))
+        for n, spec in specs.items()
+    }
+    saved = json.loads(partial.read_text()) if partial.exists() else {}
+    done = saved.get("rows", {}) if saved.get("scenes") == these else {}
+    built = {}
     rows = {}
     for label, kind, options in settings():
         if only and not any(word in label for word in only):
@@ -116,8 +125,9 @@ def measure(out: Path, only: list[str] | None) -> dict:
                     rows[key] = done["|".join(key)]
                     continue
                 folder = out / surface / name / tag
-                if not (folder / "scene.data").exists():
-                    write_scene(build_scene(spec), folder)
+                if (surface, name) not in built:
+                    built[surface, name] = build_scene(spec)
+                write_scene(built[surface, name], folder)
                 result = run_one(kind, options, folder)
                 row = {"surface": surface}
                 if "error" in result:
@@ -135,7 +145,7 @@ def measure(out: Path, only: list[str] | None) -> dict:
                         )
                 rows[key] = row
                 done["|".join(key)] = row
-                partial.write_text(json.dumps(done, indent=1))
+                partial.write_text(json.dumps({"scenes": these, "rows": done}, indent=1))
                 print(label, surface, name, row, flush=True)
     return rows
 

@@ -57,8 +57,9 @@ def lammps_version(log: Path) -> str:
     return match.group(1) if match else "unknown"
 
 
-def command_line(variables: dict[str, str], log: Path) -> list[str]:
-    args = ["-in", str(DECK), "-log", str(log), "-screen", "none", "-nocite"]
+def command_line(variables: dict[str, str], log: Path, deck: Path = DECK) -> list[str]:
+    """lmp's arguments: the deck (decks/impact.lmp unless given), its log and -var settings."""
+    args = ["-in", str(deck), "-log", str(log), "-screen", "none", "-nocite"]
     for name, value in variables.items():
         args += ["-var", name, value]
     return args
