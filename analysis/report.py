@@ -438,7 +438,11 @@ def report(
 
 
 def report_from_tables(
-    tables: Path, page: Path, resamples: int = 200, preset: str = "paper"
+    tables: Path,
+    page: Path,
+    resamples: int = 200,
+    preset: str = "paper",
+    out: Path | None = None,
 ) -> dict:
     """The page and figures of a study from its tables alone (docs/results/).
 
@@ -446,11 +450,14 @@ def report_from_tables(
     ----------
     tables : pathlib.Path
         A folder with impacts.csv, failed.csv and study.json (``report``'s
-        ``tables``); means.csv and fits.json are written again into it.
+        ``tables``); read only, unless it is ``out``.
     page : pathlib.Path
         Where the page goes; the figures go into ``figures/`` beside it.
     resamples, preset
         As for ``report``.
+    out : pathlib.Path, optional
+        Where the tables (with means.csv and fits.json made again) and
+        study.json go; default ``tables`` itself.
 
     Returns
     -------
@@ -463,11 +470,15 @@ def report_from_tables(
             return list(csv.DictReader(handle))
 
     info = json.loads((tables / "study.json").read_text())
+    out = Path(out) if out is not None else Path(tables)
+    out.mkdir(parents=True, exist_ok=True)
+    if out.resolve() != Path(tables).resolve():
+        (out / "study.json").write_bytes((tables / "study.json").read_bytes())
     return render(
         info,
         read("impacts.csv"),
         read("failed.csv"),
-        tables,
+        out,
         page,
         resamples,
         preset,

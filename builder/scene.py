@@ -14,7 +14,8 @@ import numpy as np
 
 from . import bodies
 from .bodies import SURFACE, Body
-from .errors import InputError, require_choice, require_nonnegative, require_positive
+from .checks import Range
+from .errors import InputError, require_choice
 from .geometry import distance_to_polyline
 from .materials import spring_constant
 
@@ -34,6 +35,43 @@ WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 # that gives the wall the disk's wave speed).
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
+# The ranges of the scene's numbers, for SceneSpec.validate and the command line
+# (builder/cli.py) alike.
+ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
+SEED = Range(0, 2**32 - 1, integer=True)
+RADIUS = Range(0.0, 1000.0, low_open=True, unit="R, the unit of length")
+N_DISK = Range(50, 100_000, integer=True)
+N_WALL = Range(50, 400_000, integer=True)
+ROUGHNESS = Range(0.0, 0.1, unit="R")
+K2_OVER_K1 = Range(0.0, 1000.0, low_open=True)
+NU = Range(0.0, 0.99, low_open=True)
+WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the disk's")
+WALL_WIDTH = Range(4.0, 100.0, unit="R")
+CONTACT_A = Range(1.0, 10_000.0, unit="a R")
+# Where the default run resolves the contact (bench/stability.py,
+# docs/benchmarks/stability.md, three seeds per point): every normal speed up
+# to 0.3 c at speeds along the wall up to 0.6 c; at 0.4 c and 0.8 c along the
+# wall, or 0.5 c at 45 degrees, disk points go into the wall.
+VN = Range(0.0, 0.3, low_open=True, unit="units of c")
+MAX_TANGENTIAL_SPEED = 0.6  # c
+
+
+def speed_warning(vn: float, gamma_deg: float) -> str | None:
+    """Why a run at (vn, gamma) may not resolve the contact, or None."""
+    tangential = vn * math.tan(math.radians(gamma_deg))
+    if tangential <= MAX_TANGENTIAL_SPEED * (1.0 + 1e-9):
+        return None
+    return (
+        f"the disk's speed along the wall, vn tan(gamma) = {tangential:.2f} c, exceeds "
+        f"{MAX_TANGENTIAL_SPEED:g} c, the most at which the default run was seen to resolve "
+        "the contact (docs/benchmarks/stability.md): expect disk points inside the wall, "
+        "or a contact longer than the wall"
+    )
+GAMMA = Range(0.0, 90.0, high_open=True, unit="degrees")  # in code, 0 (head-on) too
+KB_OVER_KA = Range(0.0, 1.0)
+WALL_HEIGHT = Range(0.5, 100.0, unit="R")
+
+
 # Molecule IDs tell the bodies apart and which wall points are held fixed.
 DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 
@@ -108,41 +146,35 @@ class SceneSpec:
 
     def validate(self) -> None:
         require_choice("lattice", self.lattice, bodies.LATTICES)
-        if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
-            raise InputError(f"seed must be an integer >= 0, got {self.seed}")
-        if not 0.0 <= self.gamma_deg < 90.0:
-            raise InputError(f"gamma_deg must be in [0, 90) degrees, got {self.gamma_deg}")
-        if not 0.0 < self.vn < 1.0:
-            raise InputError(f"vn must be in (0, 1) (units of c), got {self.vn}")
-        require_positive("radius", self.radius)
-        if not self.n_disk >= 50:
-            raise InputError(f"n_disk must be an integer >= 50, got {self.n_disk}")
-        if self.n_wall != WALL_DENSITY and not (
-            isinstance(self.n_wall, int) and not isinstance(self.n_wall, bool) and self.n_wall >= 50
-        ):
+        SEED.check("seed", self.seed)
+        GAMMA.check("gamma_deg", self.gamma_deg)
+        VN.check("vn", self.vn)
+        RADIUS.check("radius", self.radius)
+        N_DISK.check("n_disk", self.n_disk)
+        if self.n_wall != WALL_DENSITY and not N_WALL.contains(self.n_wall):
             raise InputError(
-                f"n_wall must be an integer >= 50 or {WALL_DENSITY!r}, got {self.n_wall!r}"
+                f"n_wall must be {N_WALL.describe()} or {WALL_DENSITY!r}, got {self.n_wall!r}"
             )
-        if not 0.0 <= self.roughness <= 0.1:
-            raise InputError(f"roughness must be in [0, 0.1] (units of R), got {self.roughness}")
-        require_positive("k2_over_k1", self.k2_over_k1)
-        require_nonnegative("kb_over_ka", self.kb_over_ka)
+        ROUGHNESS.check("roughness", self.roughness)
+        K2_OVER_K1.check("k2_over_k1", self.k2_over_k1)
+        KB_OVER_KA.check("kb_over_ka", self.kb_over_ka)
         require_choice("wall_fixed", self.wall_fixed, WALL_FIXED_CHOICES)
-        if not self.wall_width >= 4.0:
-            raise InputError(f"wall_width must be >= 4 (units of R), got {self.wall_width}")
-        if not self.wall_height >= 0.5:
-            raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
-        if self.wall_ka != WALL_SAME_C and not (
-            isinstance(self.wall_ka, float) and 0.01 <= self.wall_ka <= 1000.0
-        ):
+        WALL_WIDTH.check("wall_width", self.wall_width)
+        WALL_HEIGHT.check("wall_height", self.wall_height)
+        if self.wall_ka != WALL_SAME_C and not WALL_KA.contains(self.wall_ka):
             raise InputError(
-                f"wall_ka must be a number in [0.01, 1000] (the wall's ka over the "
-                f"disk's) or {WALL_SAME_C!r}, got {self.wall_ka!r}"
+                f"wall_ka must be {WALL_KA.describe()} or {WALL_SAME_C!r}, got {self.wall_ka!r}"
             )
-        require_positive("contact_a", self.contact_a)
+        if not N_WALL.contains(self.wall_points):
+            raise InputError(
+                f"n_wall: the wall would have {self.wall_points} points (n_disk {self.n_disk} "
+                f"at the disk's density over a {self.wall_width:g} R wide wall); it must have "
+                f"{N_WALL.describe()}"
+            )
+        CONTACT_A.check("contact_a", self.contact_a)
         require_contact_resolved(self.contact_a, self.wall_spacing)
-        require_nonnegative("contact_time_guess", self.contact_time_guess)
-        require_positive("start_gap", self.start_gap)
+        Range(0.0, 1000.0).check("contact_time_guess", self.contact_time_guess)
+        Range(0.0, 100.0, low_open=True).check("start_gap", self.start_gap)
 
     @property
     def wall_spacing(self) -> float:

@@ -5,18 +5,23 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.cli import OneLineParser, count, positive_float
+from builder.checks import OutFolder, Range
+from builder.cli import OneLineParser
 from builder.errors import InputError
+from builder.materials import TABLE
+from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
 
 from .stretch import ROOT, run_stretch
 from .table import calibrate, markdown
 
 DOC = ROOT / "docs" / "materials.md"
+STRIPS = Range(2, 1_000, integer=True)
+PULL_ANGLE = Range(-180.0, 180.0, unit="degrees")
 
 
-def write_doc(table: dict) -> None:
-    DOC.write_text(
+def write_doc(table: dict, path: Path = DOC) -> None:
+    path.write_text(
         "# Materials\n\n"
         f"Measured by `{table['command']}` ({table['date']}, LAMMPS {table['lammps']}, "
         f"revision {table['git_revision']}); the numbers are in `calibration/materials.json`, "
@@ -30,7 +35,8 @@ def write_doc(table: dict) -> None:
     )
 
 
-def main(argv: list[str] | None = None) -> int:
+def parser() -> OneLineParser:
+    """python -m calibration's options."""
     parser = OneLineParser(
         prog="python -m calibration", description="Stretch lattice strips and measure E, nu and c."
     )
@@ -40,28 +46,78 @@ def main(argv: list[str] | None = None) -> int:
         help="calibrate every lattice of the study: "
         "calibration/materials.json and docs/materials.md",
     )
-    run.add_argument("--seeds", type=count(2), default=12, help="random strips (default: 12)")
+    run.add_argument(
+        "--seeds",
+        type=STRIPS,
+        default=12,
+        help=f"random strips, {STRIPS.describe()} (default: 12)",
+    )
     run.add_argument(
         "--square",
-        type=positive_float,
+        type=K2_OVER_K1,
         action="append",
         default=[],
-        help="also calibrate a square lattice with this k2/k1 (repeatable)",
+        help=f"also calibrate a square lattice with this k2/k1, {K2_OVER_K1.describe()} "
+        "(repeatable)",
+    )
+    run.add_argument(
+        "--out",
+        type=OutFolder(),
+        default=ROOT / "runs" / "calibration",
+        help="folder for materials.json and materials.md (default: runs/calibration)",
+    )
+    run.add_argument(
+        "--install",
+        action="store_true",
+        help="write calibration/materials.json, which every scene reads, and "
+        "docs/materials.md instead (make calibrate does)",
     )
     strip = commands.add_parser("strip", help="stretch one strip and print what it gives")
     strip.add_argument("--lattice", choices=("random", "triangular", "square"), default="random")
-    strip.add_argument("--seed", type=count(0), default=1)
-    strip.add_argument("--k2-over-k1", type=positive_float, default=3.0 / 7.0)
-    strip.add_argument("--angle", type=float, default=0.0, help="lattice axes to the pull, degrees")
-    strip.add_argument("--out", required=True, help="folder for the strip and its log")
-    args = parser.parse_args(argv)
+    strip.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
+    strip.add_argument(
+        "--k2-over-k1",
+        type=K2_OVER_K1,
+        default=None,
+        help=f"square lattice only: {K2_OVER_K1.describe()} (default: 3/7)",
+    )
+    strip.add_argument(
+        "--angle",
+        type=PULL_ANGLE,
+        default=0.0,
+        help=f"lattice axes to the pull, {PULL_ANGLE.describe()} (default: 0)",
+    )
+    strip.add_argument(
+        "--out", type=OutFolder(), required=True, help="folder for the strip and its log"
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     try:
         if args.command == "run":
-            table = calibrate(args.seeds, tuple(args.square))
-            write_doc(table)
+            table_path, doc = (
+                (TABLE, DOC)
+                if args.install
+                else (args.out / "materials.json", args.out / "materials.md")
+            )
+            table_path.parent.mkdir(parents=True, exist_ok=True)
+            table = calibrate(args.seeds, tuple(args.square), path=table_path)
+            write_doc(table, doc)
             print(markdown(table))
+            print(f"wrote {table_path} and {doc}")
         else:
-            spec = StripSpec(args.lattice, args.seed, args.k2_over_k1, args.angle)
+            if args.k2_over_k1 is not None and args.lattice != "square":
+                raise InputError(
+                    f"--k2-over-k1 applies to --lattice square only, got {args.lattice}"
+                )
+            if args.angle != 0.0 and args.lattice == "random":
+                raise InputError("--angle applies to the regular lattices only, got random")
+            ratio = args.k2_over_k1 if args.k2_over_k1 is not None else 3.0 / 7.0
+            spec = StripSpec(args.lattice, args.seed, ratio, args.angle)
             r = run_stretch(spec, Path(args.out))
             print(
                 f"c^2 = {r.c2:.6f} ka d^2/m  nu = {r.nu:.4f}  E = {r.e_modulus:.5f} ka  "

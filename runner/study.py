@@ -19,12 +19,15 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result, write_json_atomically
+from builder.checks import Range, require_out_folder
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
+from builder.materials import calibrated, square_ratio_for_poisson
+from builder.scene import SceneSpec, build_scene, speed_warning
 
 from .impact import check_folder, run_scene
-from .lammps_run import lammps_error
+from .lammps_run import ROOT as LAMMPS_ROOT
+from .lammps_run import STYLE_LIBRARIES, lammps_error
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -37,6 +40,21 @@ LATTICES = {
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
+# The grid's numbers. A study larger than MAX_IMPACTS is refused with its
+# size and the time it would take at IMPACTS_PER_WORKER_MINUTE, the paper
+# study's rate per worker (162 per minute on 2 workers, docs/results.md).
+SAMPLES = Range(1, 10_000, integer=True)
+ANGLES = Range(2, 1_000, integer=True)
+WORKERS = Range(1, 1_024, integer=True)
+PARTITIONS = Range(0, 4_096, integer=True)
+BATCH = Range(1, 10_000, integer=True)
+MAX_IMPACTS = 200_000
+IMPACTS_PER_WORKER_MINUTE = 81.0
+# Presets whose page is committed under docs/, written only with --docs.
+DOC_PAGES = {"paper": "results"}
+# What may differ between a study's study.json and a command that resumes it
+# with --extend: more samples, more lattices.
+EXTENDABLE = ("samples", "lattices")
 # An unreadable result.json is moved aside to this name, kept for a look, and
 # its impact runs again.
 CORRUPT = "result.json.corrupt"
@@ -84,6 +102,7 @@ class Study:
     first_seed: int = 1
     vn: float = 0.1
     n_disk: int = 800
+    roughness: float = SceneSpec.roughness
     wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
     contact_a: float = 300.0  # a R; finer disks need more (docs/contact.md)
     n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
@@ -96,21 +115,50 @@ class Study:
         return ROOT / "runs" / self.name
 
     def validate(self) -> None:
-        from builder.errors import InputError
-
         if problem := name_problem(self.name):
             raise InputError(f"name {problem}, got {self.name!r}")
         check_folder(self.folder)  # the clone's own path, for LAMMPS
+        require_out_folder("name", self.folder)
+        if not self.lattices:
+            raise InputError(f"lattices must be among {', '.join(LATTICES)}; got none")
         for lattice in self.lattices:
             if lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
-        if self.angles < 2 or self.samples < 1:
+        ANGLES.check("angles", self.angles)
+        SAMPLES.check("samples", self.samples)
+        size = self.samples * self.angles * len(self.lattices)
+        if size > MAX_IMPACTS:
+            hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
             raise InputError(
-                f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}"
+                f"samples x angles x lattices must be at most {MAX_IMPACTS} impacts, got "
+                f"{self.samples} x {self.angles} x {len(self.lattices)} = {size}, about "
+                f"{hours:,.0f} hours on 2 workers of this project's machine"
             )
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+
+    def grid(self) -> dict:
+        """What the study's tables depend on, as study.json records it."""
+        values = asdict(self)
+        values.pop("name")
+        return values
+
+    @classmethod
+    def from_json(cls, path: Path) -> Study:
+        """The study a study.json records; fields it lacks (older studies) take
+        their defaults, keys that are not fields (wall_clock) are skipped."""
+        try:
+            info = json.loads(path.read_text())
+            fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
+            fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
+            options = fields.pop("options", {})
+            known = RunOptions.__dataclass_fields__
+            return cls(
+                **fields, options=RunOptions(**{k: v for k, v in options.items() if k in known})
+            )
+        except (OSError, ValueError, TypeError) as error:
+            raise InputError(f"{path}: not a study's record ({error})") from None
 
     def jobs(self) -> list[dict]:
         """Every impact, grouped by sample: (lattice, seed) then angle."""
@@ -130,6 +178,7 @@ class Study:
             gamma_deg=job["gamma"],
             vn=self.vn,
             n_disk=self.n_disk,
+            roughness=self.roughness,
             wall_width=self.wall_width,
             contact_a=self.contact_a,
             n_wall=self.n_wall,
@@ -165,6 +214,100 @@ class Study:
         counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
         print(f"study {self.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
         return counts
+
+
+class EnvironmentFault(RuntimeError):
+    """Something every impact needs is missing: no impact is run or marked failed."""
+
+
+def check_environment(study: Study) -> None:
+    """The project's LAMMPS styles and every lattice's calibration, before any impact."""
+    for library, _ in STYLE_LIBRARIES.values():
+        path = LAMMPS_ROOT / "build" / library
+        if not path.is_file():
+            raise EnvironmentFault(f"{path} is missing: make setup builds it")
+    for lattice in study.lattices:
+        spec = study.spec({"lattice": lattice, "seed": study.first_seed, "gamma": 45.0})
+        try:
+            calibrated(spec.lattice, spec.k2_over_k1)
+        except (OSError, ValueError) as error:
+            raise EnvironmentFault(
+                f"calibration/materials.json cannot give {lattice}: {error} "
+                "(git checkout calibration/materials.json, or make calibrate)"
+            ) from None
+
+
+def study_from_args(args) -> Study:
+    """The study a `runner study` command names: the preset's, or, if its
+    folder holds a study, that study's study.json; the options given change
+    it. A study that exists is never changed silently: an option that differs
+    from its record is refused, but for --extend's more samples or lattices."""
+    from dataclasses import replace
+
+    name = args.name or args.preset
+    record = ROOT / "runs" / name / "study.json"
+    existing = record.exists()
+    base = Study.from_json(record) if existing else PRESETS[args.preset]
+    base = replace(base, name=name)
+    changes = {
+        key: getattr(args, key)
+        for key in (
+            "samples",
+            "angles",
+            "vn",
+            "roughness",
+            "n_disk",
+            "wall_width",
+            "contact_a",
+            "n_wall",
+            "wall_ka",
+            "wall_fixed",
+        )
+        if getattr(args, key) is not None
+    }
+    if args.lattices:
+        changes["lattices"] = tuple(dict.fromkeys(args.lattices))
+    options = {
+        key: getattr(args, key)
+        for key in ("dt", "max_drift")
+        if getattr(args, key) is not None
+    }
+    if options:
+        changes["options"] = replace(base.options, **options)
+    study = replace(base, **changes)
+    if existing:
+        before, after = base.grid(), study.grid()
+        differ = [key for key in after if after[key] != before.get(key)]
+        grows = {
+            "samples": study.samples >= base.samples,
+            "lattices": set(base.lattices) <= set(study.lattices),
+        }
+        refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
+        if refused:
+            said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
+            hint = (
+                " (--extend adds samples or lattices)"
+                if set(refused) <= set(EXTENDABLE)
+                else ""
+            )
+            raise InputError(
+                f"--name {name}: runs/{name} holds a study with another grid: {said}; "
+                f"leave the option out to use the study's{hint}, or give another --name"
+            )
+    elif args.report_only:
+        raise InputError(f"--report-only: no study in runs/{name}; run it first")
+    study.validate()
+    if not args.report_only:
+        check_environment(study)
+        fast = [g for g in study_angles(study.angles) if speed_warning(study.vn, g)]
+        if fast:
+            print(
+                f"warning: at {len(fast)} angles from {fast[0]:g} degrees, "
+                f"{speed_warning(study.vn, fast[0])}",
+                file=sys.stderr,
+                flush=True,
+            )
+    return study
 
 
 def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) -> None:
