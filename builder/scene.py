@@ -54,6 +54,9 @@ CONTACT_A = Range(1.0, 10_000.0, unit="a R")
 # wall, or 0.5 c at 45 degrees, disk points go into the wall.
 VN = Range(0.0, 0.3, low_open=True, unit="units of c")
 MAX_TANGENTIAL_SPEED = 0.6  # c
+GAMMA = Range(0.0, 90.0, high_open=True, unit="degrees")  # in code, 0 (head-on) too
+KB_OVER_KA = Range(0.0, 1.0)
+WALL_HEIGHT = Range(0.5, 100.0, unit="R")
 
 
 def speed_warning(vn: float, gamma_deg: float) -> str | None:
@@ -67,9 +70,6 @@ def speed_warning(vn: float, gamma_deg: float) -> str | None:
         "the contact (docs/benchmarks/stability.md): expect disk points inside the wall, "
         "or a contact longer than the wall"
     )
-GAMMA = Range(0.0, 90.0, high_open=True, unit="degrees")  # in code, 0 (head-on) too
-KB_OVER_KA = Range(0.0, 1.0)
-WALL_HEIGHT = Range(0.5, 100.0, unit="R")
 
 
 # Molecule IDs tell the bodies apart and which wall points are held fixed.

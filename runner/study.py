@@ -268,9 +268,7 @@ def study_from_args(args) -> Study:
     if args.lattices:
         changes["lattices"] = tuple(dict.fromkeys(args.lattices))
     options = {
-        key: getattr(args, key)
-        for key in ("dt", "max_drift")
-        if getattr(args, key) is not None
+        key: getattr(args, key) for key in ("dt", "max_drift") if getattr(args, key) is not None
     }
     if options:
         changes["options"] = replace(base.options, **options)
@@ -285,11 +283,7 @@ def study_from_args(args) -> Study:
         refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
         if refused:
             said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
-            hint = (
-                " (--extend adds samples or lattices)"
-                if set(refused) <= set(EXTENDABLE)
-                else ""
-            )
+            hint = " (--extend adds samples or lattices)" if set(refused) <= set(EXTENDABLE) else ""
             raise InputError(
                 f"--name {name}: runs/{name} holds a study with another grid: {said}; "
                 f"leave the option out to use the study's{hint}, or give another --name"
