@@ -76,7 +76,9 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         if args.command == "scene":
-            folder = write_scene(build_scene(spec_from_args(args)), args.out, args.springs)
+            spec = spec_from_args(args)
+            spec.validate()  # every value checked before anything is built or written
+            folder = write_scene(build_scene(spec), args.out, args.springs)
             print(f"wrote {folder}/scene.data, scene.lmp, scene.json")
         else:
             path = Path(args.out) / table_name(args.a, args.v0)

@@ -70,6 +70,8 @@ def wall_spring(text: str) -> float | str:
 
 
 wall_points.__name__ = wall_spring.__name__ = "reading"
+# what each takes besides its word (tests/test_bad_input.py feeds it bad numbers)
+wall_points.numbers, wall_spring.numbers = N_WALL, WALL_KA
 
 
 def add_wall_arguments(group, defaults: bool = True) -> None:

@@ -11,6 +11,7 @@ from builder.errors import InputError
 from builder.materials import TABLE
 from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
+from runner.study import runs_folder
 
 from .stretch import ROOT, run_stretch
 from .table import calibrate, markdown
@@ -63,7 +64,7 @@ def parser() -> OneLineParser:
     run.add_argument(
         "--out",
         type=OutFolder(),
-        default=ROOT / "runs" / "calibration",
+        default=runs_folder() / "calibration",
         help="folder for materials.json and materials.md (default: runs/calibration)",
     )
     run.add_argument(

@@ -31,7 +31,16 @@ from .options import (
     RunOptions,
 )
 from .stopping import Stopped, stop_on_signals
-from .study import ANGLES, BATCH, LATTICES, PARTITIONS, SAMPLES, WORKERS, EnvironmentFault
+from .study import (
+    ANGLES,
+    BATCH,
+    LATTICES,
+    PARTITIONS,
+    SAMPLES,
+    WORKERS,
+    EnvironmentFault,
+    runs_folder,
+)
 
 MAX_DRIFT_HELP = (
     "flag a run whose energy drift (change of the total energy over the initial "
@@ -46,6 +55,9 @@ def study_name(text: str) -> str:
     if problem := name_problem(text):
         raise argparse.ArgumentTypeError(f"{problem}, got {text!r}")
     return text
+
+
+study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y")  # tests/test_bad_input.py
 
 
 def add_run_arguments(parser) -> None:
@@ -328,7 +340,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "impact":
             spec = spec_from_args(args)
-            out = args.out or Path(f"runs/{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}")
+            out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
             require_out_folder("--out", out)
             spec.validate()
             if warning := speed_warning(spec.vn, spec.gamma_deg):
@@ -374,7 +386,7 @@ def run_study_command(args) -> int:
         )
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
-        out = docs / "results" if args.docs else ROOT / "runs" / name
+        out = docs / "results" if args.docs else runs_folder() / name
         page = docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else out / "results.md"
         summary = report_from_tables(args.from_tables, page, preset=args.preset, out=out)
         print(

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result, write_json_atomically
-from builder.checks import Range, require_out_folder
+from builder.checks import Range, require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.materials import calibrated, square_ratio_for_poisson
@@ -60,6 +60,12 @@ EXTENDABLE = ("samples", "lattices")
 CORRUPT = "result.json.corrupt"
 
 
+def runs_folder() -> Path:
+    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
+    cluster's scratch space; the tests' temporary folder)."""
+    return Path(os.environ.get("IMPACT_RUNS") or ROOT / "runs")
+
+
 def name_problem(name: str) -> str | None:
     """Why ``name`` cannot be a study's folder under runs/, or None.
 
@@ -71,9 +77,7 @@ def name_problem(name: str) -> str | None:
         return "must be a non-empty folder name"
     if os.sep in name or (os.altsep and os.altsep in name) or ".." in name:
         return "must be one folder under runs/, without '/' or '..'"
-    if any(c.isspace() for c in name):
-        return "must not contain whitespace (LAMMPS splits its commands at it)"
-    return None
+    return word_problem(name)
 
 
 def study_angles(count: int) -> list[float]:
@@ -112,7 +116,7 @@ class Study:
 
     @property
     def folder(self) -> Path:
-        return ROOT / "runs" / self.name
+        return runs_folder() / self.name
 
     def validate(self) -> None:
         if problem := name_problem(self.name):
@@ -245,7 +249,7 @@ def study_from_args(args) -> Study:
     from dataclasses import replace
 
     name = args.name or args.preset
-    record = ROOT / "runs" / name / "study.json"
+    record = runs_folder() / name / "study.json"
     existing = record.exists()
     base = Study.from_json(record) if existing else PRESETS[args.preset]
     base = replace(base, name=name)
@@ -285,11 +289,11 @@ def study_from_args(args) -> Study:
             said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
             hint = " (--extend adds samples or lattices)" if set(refused) <= set(EXTENDABLE) else ""
             raise InputError(
-                f"--name {name}: runs/{name} holds a study with another grid: {said}; "
+                f"--name {name}: {record.parent} holds a study with another grid: {said}; "
                 f"leave the option out to use the study's{hint}, or give another --name"
             )
     elif args.report_only:
-        raise InputError(f"--report-only: no study in runs/{name}; run it first")
+        raise InputError(f"--report-only: no study in {record.parent}; run it first")
     study.validate()
     if not args.report_only:
         check_environment(study)

@@ -12,7 +12,7 @@ import pytest
 from builder.bodies import triangular_spacing
 from builder.materials import calibrated
 from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
-from tests.helpers import ROOT, SMALL
+from tests.helpers import ROOT, RUNS, SMALL
 
 WALL_AREA = 8.0 * 2.0
 
@@ -144,12 +144,12 @@ def test_bad_reading_on_the_command_line(tmp_path, command, args, words):
     assert proc.returncode == 2
     assert words in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
-    assert not out.exists() and not (ROOT / "runs" / "test_bad_reading").exists()
+    assert not out.exists() and not (RUNS / "test_bad_reading").exists()
 
 
 def test_a_study_records_its_reading_in_every_row():
     name = "test_study_reading"
-    subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    subprocess.run(["rm", "-rf", str(RUNS / name)])
     options = (
         "--lattices random --angles 2 --samples 1 --n-disk 200 "
         "--n-wall 600 --wall-ka 2 --wall-fixed sides+bottom"
@@ -162,14 +162,14 @@ def test_a_study_records_its_reading_in_every_row():
         timeout=600,
     )
     assert proc.returncode == 0, proc.stderr
-    with (ROOT / "runs" / name / "impacts.csv").open() as handle:
+    with (RUNS / name / "impacts.csv").open() as handle:
         rows = list(csv.DictReader(handle))
     assert len(rows) == 2
     for row in rows:
         assert (row["n_wall"], row["wall_ka"], row["wall_fixed"]) == ("600", "2.0", "sides+bottom")
         assert float(row["ka_wall_over_disk"]) == pytest.approx(2.0)
         assert abs(int(row["n_wall_points"]) - 600) < 30
-    page = (ROOT / "runs" / name / "results.md").read_text()
+    page = (RUNS / name / "results.md").read_text()
     assert "--n-wall 600 --wall-ka 2 --wall-fixed sides+bottom" in page
 
 
