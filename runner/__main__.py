@@ -34,6 +34,7 @@ from .stopping import Stopped, stop_on_signals
 from .study import (
     ANGLES,
     BATCH,
+    COT_GAMMA,
     LATTICES,
     PARTITIONS,
     SAMPLES,
@@ -241,6 +242,15 @@ def add_study_arguments(study) -> None:
     )
     grid.add_argument(
         "--angles", type=ANGLES, default=None, help=f"number of angles, {ANGLES.describe()}"
+    )
+    grid.add_argument(
+        "--cot-gamma",
+        nargs="+",
+        type=COT_GAMMA,
+        default=None,
+        metavar="C",
+        help=f"these angles instead of --angles log-spaced ones: cot gamma values, each "
+        f"{COT_GAMMA.describe()}",
     )
     grid.add_argument(
         "--lattices",

@@ -45,6 +45,7 @@ KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
 # study's rate per worker (162 per minute on 2 workers, docs/results.md).
 SAMPLES = Range(1, 10_000, integer=True)
 ANGLES = Range(2, 1_000, integer=True)
+COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
 WORKERS = Range(1, 1_024, integer=True)
 PARTITIONS = Range(0, 4_096, integer=True)
 BATCH = Range(1, 10_000, integer=True)
@@ -102,6 +103,8 @@ class Study:
     name: str
     lattices: tuple[str, ...] = tuple(LATTICES)
     angles: int = 16
+    # explicit angles, as cot gamma; empty: `angles` of them log-spaced (study_angles)
+    cot_gamma: tuple[float, ...] = ()
     samples: int = 100
     first_seed: int = 1
     vn: float = 0.1
@@ -129,6 +132,13 @@ class Study:
             if lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
         ANGLES.check("angles", self.angles)
+        for value in self.cot_gamma:
+            COT_GAMMA.check("cot_gamma", value)
+        if self.cot_gamma and len(self.cot_gamma) != self.angles:
+            raise InputError(
+                f"angles must be the number of cot_gamma values ({len(self.cot_gamma)}), "
+                f"got {self.angles}"
+            )
         SAMPLES.check("samples", self.samples)
         size = self.samples * self.angles * len(self.lattices)
         if size > MAX_IMPACTS:
@@ -141,6 +151,12 @@ class Study:
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+
+    def gammas(self) -> list[float]:
+        """The study's angles from the wall's normal, degrees, rounded to 1e-4."""
+        if self.cot_gamma:
+            return [round(float(np.degrees(np.arctan(1.0 / c))), 4) for c in self.cot_gamma]
+        return study_angles(self.angles)
 
     def grid(self) -> dict:
         """What the study's tables depend on, as study.json records it."""
@@ -156,6 +172,7 @@ class Study:
             info = json.loads(path.read_text())
             fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
             fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
+            fields["cot_gamma"] = tuple(fields.get("cot_gamma", ()))
             options = fields.pop("options", {})
             known = RunOptions.__dataclass_fields__
             return cls(
@@ -169,7 +186,7 @@ class Study:
         out = []
         for seed in range(self.first_seed, self.first_seed + self.samples):
             for lattice in self.lattices:
-                for gamma in study_angles(self.angles):
+                for gamma in self.gammas():
                     folder = self.folder / lattice / f"s{seed}" / f"g{gamma:.4f}"
                     out.append(
                         {"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)}
@@ -271,6 +288,11 @@ def study_from_args(args) -> Study:
     }
     if args.lattices:
         changes["lattices"] = tuple(dict.fromkeys(args.lattices))
+    if args.cot_gamma:
+        if args.angles is not None:
+            raise InputError("--angles and --cot-gamma: give one of them")
+        changes["cot_gamma"] = tuple(sorted(set(args.cot_gamma), reverse=True))
+        changes["angles"] = len(changes["cot_gamma"])
     options = {
         key: getattr(args, key) for key in ("dt", "max_drift") if getattr(args, key) is not None
     }
@@ -297,7 +319,7 @@ def study_from_args(args) -> Study:
     study.validate()
     if not args.report_only:
         check_environment(study)
-        fast = [g for g in study_angles(study.angles) if speed_warning(study.vn, g)]
+        fast = [g for g in study.gammas() if speed_warning(study.vn, g)]
         if fast:
             print(
                 f"warning: at {len(fast)} angles from {fast[0]:g} degrees, "
