@@ -179,7 +179,7 @@ bench-impact: setup
 
 bench-study: setup
 	$(PYTHON) bench/run_settings.py --docs
-	$(PYTHON) bench/stop_rule.py --docs
+	$(PYTHON) bench/stop_rule.py --vibration 1 --name stop_rule_vibration --docs
 	$(PYTHON) bench/stability.py --docs
 
 clean:

@@ -1,6 +1,6 @@
 """Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
 
-    python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
+    python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1] [--docs]
 
 On one scene of the default reading (MODEL.md section 8; random disk), the
 same number of steps S (those the impact takes) for:
@@ -21,13 +21,16 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 from common import (
     BENCH_DECK,
+    REPEATS,
     ROOT,
+    bench_parser,
     loop_seconds,
     markdown_table,
     median,
@@ -36,7 +39,7 @@ from common import (
 )
 
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import ANGLE, SEED, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import command_line
 from runner.study import PRESETS
@@ -93,12 +96,28 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=5, help="runs of every variant (default: 5)")
-    parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
-    parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=5,
+        help=f"runs of every variant, {REPEATS.describe()} (default: 5)",
+    )
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=30.0,
+        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
+    )
+    parser.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
 
     spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
     scene = build_scene(spec)
@@ -157,9 +176,14 @@ def main() -> None:
         )
     )
     print(body)
-    command = f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
-    print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")
+    command = (
+        f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
+        + (f" --seed {args.seed}" if args.seed != 1 else "")
+        + (" --docs" if args.docs else "")
+    )
+    print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,7 +1,9 @@
 """The readings of the scene side by side (MODEL.md section 8).
 
     python bench/scene_readings.py [--samples 6] [--angles 8] [--workers 2]
-    python bench/scene_readings.py --from-csv     # the page from the committed rows only
+                                   [--top 0 [--top-samples 30]] [--docs | --out FOLDER]
+    python bench/scene_readings.py --from-csv [--docs | --out FOLDER]
+                                   # the page from the committed rows only
 
 Every reading of the wall, points (800, 1,600, the disk's density) x springs
 (the disk's ka, 10 times it, the ka that gives the wall the disk's wave
@@ -16,8 +18,10 @@ mu and beta0 with chi2/dof, the median first-to-last contact time and number
 of separate touches, the share of contacts within 1 R of a fixed side,
 failures by cause, LAMMPS seconds and steps per impact; how far each reading
 misses each of the paper's three facts, and the ranking that picks the
-default. Writes docs/benchmarks/scene_readings.md, scene_readings.png and
-scene_readings.csv (one row per impact, what the page is made from).
+default. Writes scene_readings.md, scene_readings.png and scene_readings.csv
+(one row per impact, what the page is made from) into runs/bench/, with
+--docs into docs/benchmarks/ (the committed ones), with --out into FOLDER.
+--from-csv reads the committed docs/benchmarks/scene_readings.csv.
 """
 
 from __future__ import annotations
@@ -25,20 +29,24 @@ from __future__ import annotations
 import argparse
 import csv
 import itertools
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from common import ROOT, markdown_table, write_report
+from common import DOCS, ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
 
 from analysis.report import failure_cause, fit_all, read_failure
 from analysis.table import NEAR_SIDE, collect, mean_rows, write_csv
+from builder.checks import OutFolder, Range
+from builder.errors import InputError
 from runner.options import RunOptions
-from runner.study import Study, run_study
+from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study
 
 RUNS = ROOT / "runs" / "scene_readings"
-ROWS_CSV = ROOT / "docs" / "benchmarks" / "scene_readings.csv"
-FIGURE = ROOT / "docs" / "benchmarks" / "scene_readings.png"
+# The committed rows, which --from-csv reads; a run writes its own next to its page.
+ROWS_CSV = DOCS / "scene_readings.csv"
+FIGURE_NAME = "scene_readings.png"
 
 N_WALL = (800, 1600, "density")
 WALL_KA = (1.0, 10.0, "same-c")
@@ -99,6 +107,9 @@ def label(n_wall, wall_ka, wall_fixed) -> str:
 
 def readings() -> list[tuple]:
     return list(itertools.product(N_WALL, WALL_KA, WALL_FIXED))
+
+
+TOP = Range(0, len(readings()), integer=True)
 
 
 def distance_from_text(reading: tuple) -> int:
@@ -385,34 +396,97 @@ def page(rows: list[dict], args) -> str:
         + "\n\nRanking of the random-disk readings:\n\n"
         + order
         + "\n\n![e and beta against cot gamma per reading](scene_readings.png)\n\n"
-        "One row per impact: `scene_readings.csv` (`python bench/scene_readings.py --from-csv` "
-        "rebuilds this page and the figure from it).\n"
+        "One row per impact: `scene_readings.csv` (`python bench/scene_readings.py --from-csv "
+        "--docs` rebuilds this page and the figure from it).\n"
     )
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=6, help="samples per angle (default: 6)")
-    parser.add_argument("--angles", type=int, default=8, help="angles (default: 8)")
-    parser.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    # None: not given (--from-csv takes them from its rows, and refuses them)
+    parser.add_argument(
+        "--samples",
+        type=SAMPLES,
+        default=None,
+        help=f"samples per angle, {SAMPLES.describe()} (default: 6)",
+    )
+    parser.add_argument(
+        "--angles", type=ANGLES, default=None, help=f"angles, {ANGLES.describe()} (default: 8)"
+    )
+    parser.add_argument(
+        "--workers",
+        type=WORKERS,
+        default=None,
+        help=f"worker processes, {WORKERS.describe()} (default: 2)",
+    )
     parser.add_argument(
         "--from-csv",
         action="store_true",
-        help=f"only rebuild the page and figure from {ROWS_CSV.name}",
+        help=f"only rebuild the page and figure from the committed {ROWS_CSV.name}",
     )
     parser.add_argument(
-        "--docs",
-        type=Path,
-        default=ROWS_CSV.parent,
-        help="where the page and the figure go (default: docs/benchmarks)",
+        "--out",
+        type=OutFolder(lammps=False),
+        default=None,
+        help="write the page, figure and rows into this folder instead of runs/bench/ "
+        "(not with --docs)",
     )
     parser.add_argument(
-        "--top", type=int, default=0, help="then run the best TOP readings to --top-samples"
+        "--top",
+        type=TOP,
+        default=None,
+        help=f"then run the best TOP readings to --top-samples, {TOP.describe()} (default: 0)",
     )
     parser.add_argument(
-        "--top-samples", type=int, default=30, help="samples of the best readings (default: 30)"
+        "--top-samples",
+        type=SAMPLES,
+        default=None,
+        help=f"samples of the best readings, {SAMPLES.describe()}, more than --samples "
+        "(default: 30)",
     )
-    args = parser.parse_args()
+    return parser
+
+
+def check(args: argparse.Namespace) -> None:
+    """Refuse options that do not apply together; fill in the defaults."""
+    if args.out is not None and args.docs:
+        raise InputError("--out and --docs exclude each other")
+    run_size = ("samples", "angles", "workers", "top", "top_samples")
+    if args.from_csv:
+        given = [name for name in run_size if getattr(args, name) is not None]
+        if given:
+            option = "--" + given[0].replace("_", "-")
+            raise InputError(f"{option} does not apply with --from-csv (its rows give the size)")
+        if not ROWS_CSV.is_file():
+            raise InputError(f"--from-csv: {ROWS_CSV} is missing")
+        return
+    if args.top_samples is not None and not args.top:
+        raise InputError("--top-samples applies with --top 1 or more only")
+    args.samples = 6 if args.samples is None else args.samples
+    args.angles = 8 if args.angles is None else args.angles
+    args.workers = 2 if args.workers is None else args.workers
+    args.top = args.top or 0
+    args.top_samples = 30 if args.top_samples is None else args.top_samples
+    if args.top and args.top_samples <= args.samples:
+        raise InputError(
+            f"--top-samples must be more than --samples ({args.samples}), got {args.top_samples}"
+        )
+    # every study of the run, before the first one starts
+    for reading in readings():
+        for lattice in ("random", "triangular"):
+            study_for(reading, lattice, args).validate()
+        if args.top:
+            study_for(reading, "random", args, args.top_samples).validate()
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        check(args)
+    except InputError as error:
+        return refuse(__file__, error)
+    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder.mkdir(parents=True, exist_ok=True)
 
     if args.from_csv:
         rows = read_rows_csv(ROWS_CSV)
@@ -447,17 +521,20 @@ def main() -> None:
             study = study_for(reading, "triangular", args)
             run_study(study, args.workers)
             rows += run_rows(study, reading)
-        write_csv(rows, ROWS_CSV, KEEP_COLUMNS)
-    args.docs.mkdir(parents=True, exist_ok=True)
-    draw(rows, args.docs / FIGURE.name)
+        write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
+    draw(rows, folder / FIGURE_NAME)
     body = page(rows, args)
     print(body)
     command = f"python bench/scene_readings.py --samples {args.samples} --angles {args.angles}"
     if args.top:
         command += f" --top {args.top} --top-samples {args.top_samples}"
-    path = write_report("scene_readings", "The readings of the scene", command, body, args.docs)
+    # the committed rows, which --from-csv reads, are written by --docs only
+    if args.docs or args.from_csv:
+        command += " --docs"
+    path = write_report("scene_readings", "The readings of the scene", command, body, folder=folder)
     print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

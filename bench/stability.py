@@ -1,6 +1,6 @@
 """Stability stress tests: where runs fail, what the user sees, long runs.
 
-    python bench/stability.py
+    python bench/stability.py [--docs]        (make bench-study: with --docs)
 
 1. Time-step sweeps, velocity Verlet and rRESPA, until the run fails: rough
    random and square disks at the most grazing angle of the study (80.5
@@ -10,17 +10,18 @@
    range of --vn (builder/cli.py) is taken from it.
 3. A long run after the impact (to t = 400 R/c, the conservative "gradient"
    rule): the total energy's drift, and whether the disk's springs are intact.
-Writes docs/benchmarks/stability.md.
+Writes runs/bench/stability.md, or with --docs docs/benchmarks/stability.md.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-from common import markdown_table, write_report
+from common import bench_parser, markdown_table, write_report
 
 from analysis.series import read_energies
 from builder.lammps_data import write_scene
@@ -147,8 +148,12 @@ def long_run(tmp: Path, dt: float) -> list[str]:
     return [f"{dt:g}", "400", f"{drift:+.1e}", f"{spring_strain(folder):.3f}"]
 
 
-def main() -> None:
-    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()
+def parser() -> argparse.ArgumentParser:
+    return bench_parser(__file__, __doc__)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         sweep_rows = sweep(tmp)
@@ -171,9 +176,11 @@ def main() -> None:
         )
     )
     print(body)
-    path = write_report("stability", "Stability stress tests", "python bench/stability.py", body)
+    command = "python bench/stability.py" + (" --docs" if args.docs else "")
+    path = write_report("stability", "Stability stress tests", command, body, args.docs)
     print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

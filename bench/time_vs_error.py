@@ -1,6 +1,7 @@
 """Run time against error: LAMMPS settings and the reference, on the validation scenes.
 
-    make bench          (python bench/time_vs_error.py)
+    make bench          (python bench/time_vs_error.py --docs)
+    python bench/time_vs_error.py [--out runs/bench] [--only WORD ...] [--summarise] [--docs]
 
 The nine scenes of make validate (random, triangular and square lattices at
 5.7, 45 and 80.4 degrees), each twice: with smooth surfaces, where e and beta
@@ -9,21 +10,26 @@ of an impact converge, for the error against the converged reference
 (reference/validate.py), for the wall time, the energy error and whether the
 run survives. Settings: LAMMPS velocity Verlet and rRESPA over a range of time
 steps up to where they fail, the pair variant, and the reference's schemes
-(Forest-Ruth at 1e-3 is the paper's). Writes docs/benchmarks/time_vs_error.md
-and .png and picks the fastest setting whose error stays below 1e-3 on every
-scene and that survives every rough scene.
+(Forest-Ruth at 1e-3 is the paper's). Writes time_vs_error.md, .png and .json
+into runs/bench/ (with --docs into docs/benchmarks/, the committed ones) and
+picks the fastest setting whose error stays below 1e-3 on every scene and that
+survives every rough scene. The runs and their rows (rows.json, and
+rows.partial.json, from which a killed sweep resumes) go under --out.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import sys
 from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
-from common import ROOT, markdown_table, median, write_report
+from common import ROOT, bench_parser, markdown_table, median, output_folder, refuse, write_report
 
+from builder.checks import OutFolder
+from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.scene import build_scene
 from reference.run import ReferenceOptions, Unstable, run_reference
@@ -36,6 +42,7 @@ TOLERANCE = 1e-3  # on e and beta, smooth scenes
 ENERGY_TOLERANCE = 5e-3  # on the total energy, rough scenes: every scheme has ~1e-3
 VERLET_STEPS = (1e-3, 2e-3, 3e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2)
 RESPA_STEPS = (4e-3, 8e-3, 1.2e-2, 1.6e-2)
+WORK = ROOT / "runs" / "bench"  # --out's default: the runs and their rows
 # How --max-drift's default was chosen, from this table and from study runs
 # (their commands are in the text); kept here so that make bench keeps it.
 DRIFT_NOTE = (
@@ -88,6 +95,19 @@ def settings() -> list[tuple[str, str, object]]:
         )
     ]
     return runs
+
+
+def setting_word(text: str) -> str:
+    """--only: a word that some setting's label contains."""
+    if not text or not any(text in label for label, _, _ in settings()):
+        raise argparse.ArgumentTypeError(
+            "must be part of a setting's label (verlet, respa, pair, reference, dt=0.004, "
+            f"...: the first column of time_vs_error.md), got {text!r}"
+        )
+    return text
+
+
+setting_word.__name__ = "word"
 
 
 def run_one(kind: str, options, folder: Path) -> dict:
@@ -218,21 +238,49 @@ def plot(table: list[dict], path: Path) -> None:
     fig.savefig(path, dpi=110)
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(ROOT / "runs" / "bench"))
-    parser.add_argument("--only", nargs="*", help="only settings whose label contains one of these")
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--out",
+        type=OutFolder(),
+        default=WORK,
+        help="folder for the runs and their rows (default: runs/bench)",
+    )
+    parser.add_argument(
+        "--only",
+        type=setting_word,
+        nargs="+",
+        default=None,
+        help="only settings whose label contains one of these words (verlet, respa, pair, "
+        "reference, dt=0.004, ...)",
+    )
     parser.add_argument(
         "--summarise",
         action="store_true",
-        help="only redo the table from the rows of the last run (rows.json)",
+        help="only redo the table from the rows of the last run (--out's rows.json)",
     )
-    args = parser.parse_args()
-    saved = Path(args.out) / "rows.json"
-    if args.summarise:
-        rows = {tuple(k.split("|")): v for k, v in json.loads(saved.read_text()).items()}
-    else:
-        rows = measure(Path(args.out), args.only)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    out = Path(args.out)
+    saved = out / "rows.json"
+    try:
+        if args.summarise and args.only:
+            raise InputError("--only does not apply with --summarise (it redoes the last table)")
+        if args.summarise and not saved.is_file():
+            raise InputError(f"--summarise: {saved} is missing (run without --summarise first)")
+        if args.summarise:
+            try:
+                rows = {tuple(k.split("|")): v for k, v in json.loads(saved.read_text()).items()}
+            except (ValueError, AttributeError):
+                raise InputError(f"--summarise: {saved} is not a table of rows") from None
+    except InputError as error:
+        return refuse(__file__, error)
+    if not args.summarise:
+        out.mkdir(parents=True, exist_ok=True)
+        rows = measure(out, args.only)
         saved.write_text(json.dumps({"|".join(k): v for k, v in rows.items()}, indent=1))
     table = summary(rows)
     lammps_ok = [
@@ -289,15 +337,27 @@ def main() -> None:
             f"median {paper['seconds']:.1f} s ({paper['seconds'] / best['seconds']:.0f}x) with "
             f"largest error {paper['error']:.1e}."
         )
-    plot(table, ROOT / "docs" / "benchmarks" / "time_vs_error.png")
+    folder = output_folder(args.docs)
+    plot(table, folder / "time_vs_error.png")
     body += "\n\n" + DEFAULT_NOTE + "\n\n" + DRIFT_NOTE
     body += "\n\n![time against error](time_vs_error.png)\n"
-    (ROOT / "docs" / "benchmarks" / "time_vs_error.json").write_text(
-        json.dumps(table, indent=1) + "\n"
-    )
+    (folder / "time_vs_error.json").write_text(json.dumps(table, indent=1) + "\n")
     print(body)
-    print(f"wrote {write_report('time_vs_error', 'Run time against error', 'make bench', body)}")
+    # make bench passes --docs and nothing else
+    plain = not args.only and not args.summarise and out.resolve() == WORK.resolve()
+    command = (
+        "make bench"
+        if args.docs and plain
+        else "python bench/time_vs_error.py"
+        + ("" if out.resolve() == WORK.resolve() else f" --out {args.out}")
+        + (" --only " + " ".join(args.only) if args.only else "")
+        + (" --summarise" if args.summarise else "")
+        + (" --docs" if args.docs else "")
+    )
+    title = "Run time against error"
+    print(f"wrote {write_report('time_vs_error', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

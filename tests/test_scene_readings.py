@@ -177,7 +177,7 @@ def test_the_committed_readings_table_comes_from_its_rows(tmp_path):
     """The page of docs/benchmarks/scene_readings.md, rebuilt from the committed
     rows (the machine and date line aside), is the committed page."""
     subprocess.run(
-        [sys.executable, "bench/scene_readings.py", "--from-csv", "--docs", str(tmp_path)],
+        [sys.executable, "bench/scene_readings.py", "--from-csv", "--out", str(tmp_path)],
         cwd=ROOT,
         check=True,
         capture_output=True,
