@@ -102,6 +102,7 @@ def analyse_run(folder: Path | str) -> dict:
         "wall_fixed": spec["wall_fixed"],
         "wall_spacing": scene["wall_spacing"],
         "ka_wall_over_disk": scene["ka_wall"] / scene["ka_disk"],
+        "ka_wall": scene["ka_wall"],
         "disk_inertia_ratio": scene["disk_inertia_ratio"],
         "n_disk_points": scene["n_disk_points"],
         "n_wall_points": scene["n_wall_points"],

@@ -35,6 +35,7 @@ COLUMNS = (
     "wall_fixed",
     "n_wall_points",
     "ka_wall_over_disk",
+    "ka_wall",
     "disk_inertia_ratio",
     "nu",
     "steps",
@@ -146,6 +147,8 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 values["wall_ka"] = spec.get("wall_ka", "same-c")
                 values["wall_fixed"] = spec["wall_fixed"]
                 values["ka_wall_over_disk"] = scene["ka_wall"] / scene["ka_disk"]
+            if "ka_wall" not in values and scene_file.exists():  # nor this one
+                values["ka_wall"] = json.loads(scene_file.read_text())["ka_wall"]
             if "drift_exceeded" not in values:  # nor this one
                 values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
             rows.append(row(values, lattice))

@@ -58,7 +58,7 @@ def wall_points(text: str) -> int | str:
 
 
 def wall_spring(text: str) -> float | str:
-    """--wall-ka: the wall's ka over the disk's, or "same-c"."""
+    """--wall-ka: the wall's ka over the random disk's, or "same-c"."""
     if text == "same-c":
         return text
     try:
@@ -90,8 +90,9 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
         "--wall-ka",
         type=wall_spring,
         default=spec.wall_ka if defaults else None,
-        help=f"the wall's spring constant over the disk's, {WALL_KA.describe()}, or "
-        f"'same-c': the wall's springs give it the disk's wave speed "
+        help=f"the wall's spring constant in units of the random disk's ka (that of a random "
+        f"lattice at the disk's number density with wave speed c), the same for every disk "
+        f"lattice, {WALL_KA.describe()}, or 'same-c': the wall's springs give it the wave speed c "
         f"(default: {spec.wall_ka:g})",
     )
     group.add_argument(

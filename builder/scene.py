@@ -31,8 +31,9 @@ TYPE_NAMES = {
 WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 # The readings of the wall that the paper leaves open (MODEL.md section 8):
 # n_wall is a number of points or "density" (the disk's number density), and
-# wall_ka is the wall's spring constant over the disk's, or "same-c" (the ka
-# that gives the wall the disk's wave speed).
+# wall_ka is the wall's spring constant over the random disk's (``wall_spring_constant``),
+# or "same-c" (the ka that gives the wall the wave speed c). Neither depends on
+# the disk's lattice, so that every lattice of a study meets the same wall.
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
 # The ranges of the scene's numbers, for SceneSpec.validate and the command line
@@ -45,7 +46,7 @@ N_WALL = Range(50, 400_000, integer=True)
 ROUGHNESS = Range(0.0, 0.1, unit="R")
 K2_OVER_K1 = Range(0.0, 1000.0, low_open=True)
 NU = Range(0.0, 0.99, low_open=True)
-WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the disk's")
+WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the random disk's")
 WALL_WIDTH = Range(4.0, 100.0, unit="R")
 CONTACT_A = Range(1.0, 10_000.0, unit="a R")
 # Where the default run resolves the contact (bench/stability.py,
@@ -113,7 +114,7 @@ class SceneSpec:
     wall_fixed: str = "sides+bottom"
     wall_width: float = 8.0  # in R
     wall_height: float = 2.0  # in R
-    wall_ka: float | str = 1.0  # wall's ka over the disk's, or "same-c": the disk's wave speed
+    wall_ka: float | str = 1.0  # wall's ka over the random disk's, or "same-c": wave speed c
     contact_a: float = 300.0  # decay rate of the contact, a R
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
@@ -207,6 +208,40 @@ class Scene:
     def natural_lengths(self) -> np.ndarray:
         d = self.positions[self.springs[:, 0]] - self.positions[self.springs[:, 1]]
         return np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+
+
+def wall_spring_constant(spec: SceneSpec) -> tuple[float, float, dict]:
+    """The wall's ka, which depends on the wall's reading and not on the disk's lattice.
+
+    The unit of ``wall_ka`` is the random disk's ka: the ka that gives a random
+    lattice at the disk's number density (n_disk points in pi R^2) the wave speed
+    c. For the random disk it is the disk's own ka, so ``wall_ka`` = 1 is MODEL.md's
+    "one ka for every spring of both bodies"; the triangular and square disks meet
+    the random disk's wall. "same-c": the ka that gives the wall, a random lattice
+    at its own spacing, the wave speed c.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene; only n_disk, radius and the wall's reading matter.
+
+    Returns
+    -------
+    ka_wall : float
+        The wall's quadratic spring constant.
+    ka_reference : float
+        The unit of ``wall_ka``: the random disk's ka.
+    wall_material : dict
+        The random lattice's entry of the materials table.
+    """
+    R = spec.radius
+    # The same expression as the random disk's spacing (bodies.make_disk), so that
+    # the random disk's ka and this reference are the same double.
+    reference_spacing = bodies.lattice_spacing("random", spec.n_disk / np.pi) * R
+    ka_reference, wall_material = spring_constant("random", reference_spacing)
+    if spec.wall_ka == WALL_SAME_C:
+        return spring_constant("random", spec.wall_spacing * R)[0], ka_reference, wall_material
+    return spec.wall_ka * ka_reference, ka_reference, wall_material
 
 
 def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
@@ -307,8 +342,7 @@ def build_scene(spec: SceneSpec) -> Scene:
     disk, wall = build_bodies(spec)
 
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
-    ka_same_c, wall_material = spring_constant("random", wall.spacing * R)
-    ka_wall = ka_same_c if spec.wall_ka == WALL_SAME_C else spec.wall_ka * ka_disk
+    ka_wall, ka_reference, wall_material = wall_spring_constant(spec)
     cutoff = wall.spacing * R
     gamma = np.radians(spec.gamma_deg)
     velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
@@ -363,6 +397,7 @@ def build_scene(spec: SceneSpec) -> Scene:
         wall,
         ka_disk,
         ka_wall,
+        ka_reference,
         cutoff,
         disk_material,
         wall_material,
@@ -378,6 +413,7 @@ def scene_info(
     wall: Body,
     ka_disk: float,
     ka_wall: float,
+    ka_reference: float,
     cutoff: float,
     disk_material: dict,
     wall_material: dict,
@@ -422,6 +458,8 @@ def scene_info(
         "max_natural_length": float(lengths.max()),
         "ka_disk": float(ka_disk),
         "ka_wall": float(ka_wall),
+        # the unit of spec.wall_ka: the same for every disk lattice (wall_spring_constant)
+        "ka_wall_reference": float(ka_reference),
         "kb_over_ka": spec.kb_over_ka,
         "contact": {"a": float(a), "V0": float(a * R / 2.0), "cutoff": float(cutoff)},
         "disk_mass": float(in_disk.sum()),

@@ -23,7 +23,7 @@ from builder.checks import Range, require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.materials import calibrated, square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene, speed_warning
+from builder.scene import SceneSpec, build_scene, speed_warning, wall_spring_constant
 
 from .impact import check_folder, run_scene
 from .lammps_run import ROOT as LAMMPS_ROOT
@@ -59,6 +59,12 @@ EXTENDABLE = ("samples", "lattices")
 # An unreadable result.json is moved aside to this name, kept for a look, and
 # its impact runs again.
 CORRUPT = "result.json.corrupt"
+# A result (or failure) on a wall of other springs than the study's (the
+# triangular and square disks' walls before every lattice met the random
+# disk's) is moved aside to a name with this suffix, and its impact runs again.
+OTHER_WALL = ".other-wall"
+# What rebuilding or pruning a folder leaves in it.
+SET_ASIDE = (CORRUPT, "result.json" + OTHER_WALL, "failed.json" + OTHER_WALL)
 
 
 def runs_folder() -> Path:
@@ -219,6 +225,7 @@ class Study:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
         for job in jobs:
             set_aside_if_unreadable(job)
+            set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
         return jobs
 
     def build(self, job: dict) -> Path:
@@ -227,7 +234,7 @@ class Study:
         folder = Path(job["folder"])
         if folder.is_dir():
             for path in folder.iterdir():
-                if path.name != CORRUPT:
+                if path.name not in SET_ASIDE:
                     shutil.rmtree(path) if path.is_dir() else path.unlink()
         return write_scene(build_scene(self.spec(job)), folder, self.options.springs)
 
@@ -384,10 +391,31 @@ def set_aside_if_unreadable(job: dict) -> None:
             )
 
 
+def set_aside_if_other_wall(job: dict, ka_wall: float) -> None:
+    """Move the result.json or failed.json of an impact whose wall had other
+    springs than ``ka_wall`` to the same name + .other-wall, so that the impact
+    runs again on the study's wall and no table mixes two walls."""
+    folder = Path(job["folder"])
+    scene = folder / "scene.json"
+    done = [folder / name for name in ("result.json", "failed.json") if (folder / name).exists()]
+    if not (done and scene.exists()):
+        return
+    recorded = json.loads(scene.read_text())["ka_wall"]
+    if not np.isclose(recorded, ka_wall, rtol=1e-12, atol=0.0):
+        for path in done:
+            path.replace(path.with_name(path.name + OTHER_WALL))
+        print(
+            f"warning: {folder}: its wall's ka {recorded:.6g} is not the study's {ka_wall:.6g}; "
+            f"{' and '.join(p.name for p in done)} moved aside (+{OTHER_WALL}), it runs again",
+            file=sys.stderr,
+            flush=True,
+        )
+
+
 def prune(folder: Path) -> None:
     """Keep only the small files of a finished impact."""
     for path in folder.iterdir():
-        if path.name not in KEEP and path.name != CORRUPT:
+        if path.name not in KEEP and path.name not in SET_ASIDE:
             path.unlink()
 
 
