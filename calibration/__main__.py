@@ -32,7 +32,20 @@ def write_doc(table: dict, path: Path = DOC) -> None:
         "mean over strips, sd the spread between strips. E = c^2 rho with rho the number "
         "density from Voronoi cells. Theory: exact for the triangular lattice, the continuum "
         "limit (MODEL.md's formula for nu) for the square lattice. Nonlinearity: the quadratic "
-        "term of stress against strain, relative to the linear one, at the largest strain.\n"
+        "term of stress against strain, relative to the linear one, at the largest strain.\n\n"
+        "The second table: shear modulus G and 2-D bulk modulus B in units of ka (force per "
+        "length), measured (the closed form in brackets). A strip pulled at angle a gives "
+        "E / (2 (1 + nu)), the shear modulus of the frame turned by a + 45 degrees, and "
+        "E / (2 (1 - nu)) = B: exact for pulls along the mirror lines of a lattice whose "
+        "elastic constants repeat every 90 degrees, and for an isotropic one. So the strip at "
+        "45 degrees gives G of the axes' frame (shear along the axes: C66 = k2 for the square "
+        "lattice), the axial strip G of the 45-degree frame ((C11 - C12) / 2 = k1 / 2). The "
+        "random lattice is pulled along x only: its sampler has no direction, so it is "
+        "isotropic by construction and has one G (+- the standard error over its strips). "
+        "c = sqrt(E / rho) along each direction; the study's unit is c along the axes, "
+        "which are the wall's normal and tangent, so G / (rho c^2) and B / (rho c^2) are G "
+        "and B in the study's units (G / (rho c^2) is the shear wave speed squared over c^2), "
+        "beside G of an isotropic solid of the axial nu, 1 / (2 (1 + nu)).\n"
     )
 
 
