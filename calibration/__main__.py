@@ -34,7 +34,7 @@ def write_doc(table: dict, path: Path = DOC) -> None:
         "limit (MODEL.md's formula for nu) for the square lattice. Nonlinearity: the quadratic "
         "term of stress against strain, relative to the linear one, at the largest strain.\n\n"
         "The second table: shear modulus G and 2-D bulk modulus B in units of ka (force per "
-        "length), measured (the closed form in brackets). A strip pulled at angle a gives "
+        "length), measured (the closed form in parentheses). A strip pulled at angle a gives "
         "E / (2 (1 + nu)), the shear modulus of the frame turned by a + 45 degrees, and "
         "E / (2 (1 - nu)) = B: exact for pulls along the mirror lines of a lattice whose "
         "elastic constants repeat every 90 degrees, and for an isotropic one. So the strip at "
