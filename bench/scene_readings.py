@@ -34,16 +34,16 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from common import DOCS, ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
+from common import DOCS, bench_parser, markdown_table, output_folder, refuse, write_report
 
 from analysis.report import failure_cause, fit_all, read_failure
 from analysis.table import NEAR_SIDE, collect, mean_rows, write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
 from runner.options import RunOptions
-from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study
+from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
 
-RUNS = ROOT / "runs" / "scene_readings"
+RUNS = runs_folder() / "scene_readings"
 # The committed rows, which --from-csv reads; a run writes its own next to its page.
 ROWS_CSV = DOCS / "scene_readings.csv"
 FIGURE_NAME = "scene_readings.png"
