@@ -11,6 +11,7 @@ from analysis.theory import (
     compliant_beta,
     compliant_beta_integrated,
     eta_squared,
+    nu_for_eta,
     walton_beta,
 )
 
@@ -48,6 +49,9 @@ def test_limits():
     expected = -np.cos(sticking.omega * sticking.end)
     assert np.allclose([compliant_beta(p, sticking) for p in psi], expected, atol=1e-9)
     assert eta_squared(0.0) == pytest.approx(1.0)
+    # the paper's eta = 1.015 as a Poisson ratio, and back
+    assert np.sqrt(eta_squared(nu_for_eta(1.015))) == pytest.approx(1.015, rel=1e-14)
+    assert nu_for_eta(np.sqrt(eta_squared(0.29))) == pytest.approx(0.29, rel=1e-12)
     assert walton_beta(0.1, 0.5, 0.2, 0.4) == pytest.approx(-1 + 0.2 * 1.5 * 3 * 0.1)
     assert walton_beta(10.0, 0.5, 0.2, 0.4) == pytest.approx(0.4)
 
