@@ -14,13 +14,13 @@ from pathlib import Path
 from builder.checks import Range
 from builder.cli import OneLineParser
 from builder.errors import InputError
-from runner.study import cpu_name
+from runner.study import cpu_name, runs_folder
 
 ROOT = Path(__file__).resolve().parents[1]
 # Where a benchmark's page and tables go: its run folder, unless --docs asks
 # for the committed one (make bench and friends do).
 DOCS = ROOT / "docs" / "benchmarks"
-RUNS = ROOT / "runs" / "bench"
+RUNS = runs_folder() / "bench"
 # decks/setup.lmp's dynamics for a fixed number of steps, with or without contact
 BENCH_DECK = ROOT / "bench" / "contact_cost.lmp"
 

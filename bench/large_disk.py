@@ -34,7 +34,7 @@ import math
 import shutil
 import sys
 
-from common import ROOT, bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
+from common import RUNS, bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
 
 from analysis.series import read_energies
 from builder.checks import Range
@@ -58,7 +58,7 @@ def run(
 ) -> dict:
     """Run the scene into the contact; steps/s, the energies at the end and the
     change of the total energy. ``deck`` overrides the scene's own settings."""
-    folder = ROOT / "runs" / "bench" / name
+    folder = RUNS / name
     shutil.rmtree(folder, ignore_errors=True)
     options = RunOptions(dt=dt, tmax=until, every=100)
     write_scene(scene, folder, options.springs)  # the data file's bond style is the deck's
@@ -173,7 +173,7 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.whole:
         ranks = max(args.ranks)
-        folder = ROOT / "runs" / "bench" / f"large_{args.n_disk}_whole"
+        folder = RUNS / f"large_{args.n_disk}_whole"
         shutil.rmtree(folder, ignore_errors=True)
         options = RunOptions(dt=dt, nprocs=ranks, every=100)
         write_scene(scene, folder, options.springs)

@@ -57,6 +57,7 @@ def page_name(text: str) -> str:
 
 
 page_name.__name__ = "name"
+page_name.bad_values = ("", "other", "stop_rule_", "stop_rule/x", "../stop_rule")
 
 
 def long_run(folder: Path) -> dict:

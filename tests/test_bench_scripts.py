@@ -1,14 +1,13 @@
-"""Every benchmark script starts, and refuses bad input as the entry points do.
+"""Every benchmark script starts, and refuses options that do not go together.
 
 The benchmarks are not run by the tests (they time things), so a script
 whose imports broke would otherwise go unnoticed until someone ran it. Each
-answers --help; every option it has checks its value (a Range, a list of
-choices, a path that must exist or can be written, or a flag); and every
-bad value, or bad combination, exits 2 with one line on stderr that names
-the option, before anything is written into docs/ or runs/.
+answers --help; every bad combination of options exits 2 with one line on
+stderr that names the option, before anything is written into docs/ or
+runs/. Bad values of single options: tests/test_bad_input.py, which covers
+the benchmarks with every other entry point.
 """
 
-import argparse
 import importlib.util
 import subprocess
 import sys
@@ -16,12 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from builder.checks import InPath, OutFolder, Range
-
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = sorted(p for p in (ROOT / "bench").glob("*.py") if p.name != "common.py")
-# Text a number option is fed; those its Range takes are left out per option.
-NUMBERS = ("nan", "inf", "1e300", "-1", "0", "1.5", "x", "")
 # A bad combination per script that has one, with the option the line must name.
 COMBINATIONS = [
     (
@@ -91,36 +86,6 @@ def load(script: Path, guarded: bool = False):
     return module
 
 
-def options(script: Path) -> list[argparse.Action]:
-    return [a for a in load(script).parser()._actions if not isinstance(a, argparse._HelpAction)]
-
-
-def bad_values(action: argparse.Action, tmp: Path) -> list[str]:
-    """Values the option must refuse."""
-    if action.choices is not None:
-        return ["no-such-choice", ""]
-    if isinstance(action.type, Range):
-        return [text for text in NUMBERS if not _takes(action.type, text)]
-    if isinstance(action.type, InPath):
-        (tmp / "a_file").write_text("")
-        return [str(tmp / "missing"), str(tmp / "a_file" / "below")]
-    if isinstance(action.type, OutFolder):
-        (tmp / "a_file").write_text("")
-        # a space only where LAMMPS takes the path
-        spaced = [str(tmp / "a b")] if action.type.lammps else []
-        return ["/proc/x", str(tmp / "a_file" / "below"), *spaced, ""]
-    # a checking function of the script's own (--n-wall, --name, --only, ...)
-    return [text for text in (*NUMBERS, "../x", "a b") if not _takes(action.type, text)]
-
-
-def _takes(check, text: str) -> bool:
-    try:
-        check(text)
-    except (argparse.ArgumentTypeError, ValueError):
-        return False
-    return True
-
-
 def listing() -> dict[str, tuple[int, int]]:
     """Size and mtime of every file a benchmark could write: docs/, runs/bench/
     and runs/'s own entries (the study benchmarks' folders)."""
@@ -162,34 +127,6 @@ def test_bench_script_answers_help(script):
     assert proc.returncode == 0, proc.stderr[-500:]
     assert proc.stdout.startswith("usage:")
     assert "--docs" in proc.stdout
-
-
-@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.name)
-def test_every_option_checks_its_value(script):
-    """A flag, a list of choices, or a type that refuses (no bare int, float, str)."""
-    for action in options(script):
-        flag = isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction))
-        assert flag or action.choices is not None or action.type not in (None, int, float, str), (
-            f"{script.name} {action.option_strings} takes any value"
-        )
-        if isinstance(action.type, Range):  # 1e300 refused too
-            assert action.type.high is not None, f"{script.name} {action.option_strings}"
-
-
-@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.name)
-def test_bad_values_are_refused_before_anything_is_written(script, tmp_path, capsys):
-    before = listing()
-    cases = 0
-    for action in options(script):
-        name = action.option_strings[-1]
-        for value in bad_values(action, tmp_path) if action.nargs != 0 else ():
-            lines = refused(script, [*REQUIRED.get(script.name, []), name, value], capsys)
-            assert len(lines) == 1 and name in lines[0], (name, value, lines)
-            cases += 1
-    assert listing() == before
-    assert not (tmp_path / "a b").exists()
-    if script.name != "stability.py":  # its only option is --docs
-        assert cases >= 4
 
 
 @pytest.mark.parametrize(
