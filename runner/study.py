@@ -218,7 +218,10 @@ class Study:
         """Check the study, record it in its folder, and return its jobs."""
         self.validate()
         self.folder.mkdir(parents=True, exist_ok=True)
-        (self.folder / "study.json").write_text(json.dumps(asdict(self), indent=1))
+        # common_wall: every lattice meets the same wall (builder.scene.wall_spring_constant),
+        # which the results page reads; study.json files from before lack it
+        record = {**asdict(self), "common_wall": True}
+        (self.folder / "study.json").write_text(json.dumps(record, indent=1))
         jobs = self.jobs()
         if retry_failed:
             for job in jobs:

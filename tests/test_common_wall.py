@@ -111,3 +111,16 @@ def test_a_result_on_another_wall_is_set_aside_and_runs_again(tmp_path):
         set_aside_if_other_wall(j, ka_wall)
     assert state(job) == "pending" and (tmp_path / "a" / f"result.json{OTHER_WALL}").exists()
     assert state(same) == "done"
+
+
+def test_a_study_records_its_common_wall(tmp_path, monkeypatch):
+    """study.json says that the lattices met one wall; the results page reads it."""
+    from analysis.page import wall_reading
+
+    monkeypatch.setenv("IMPACT_RUNS", str(tmp_path))
+    study = Study("common", n_disk=200, angles=2, samples=1)
+    study.prepare()
+    record = json.loads((study.folder / "study.json").read_text())
+    assert record["common_wall"] is True
+    assert wall_reading(record, [], ("square_nu0.1", "square_nu0.3"))[0] is True
+    assert Study.from_json(study.folder / "study.json") == study  # not a field of the grid
