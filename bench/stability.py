@@ -148,36 +148,80 @@ def long_run(tmp: Path, dt: float) -> list[str]:
     return [f"{dt:g}", "400", f"{drift:+.1e}", f"{spring_strain(folder):.3f}"]
 
 
+PARTS = ("steps", "speeds", "long")
+
+
 def parser() -> argparse.ArgumentParser:
-    return bench_parser(__file__, __doc__)
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--parts",
+        nargs="+",
+        choices=PARTS,
+        default=list(PARTS),
+        help="which tests to run (default: all); each writes its own section, and a "
+        "page of only some is named after them (stability_speeds.md, ...)",
+    )
+    return parser
+
+
+SPEED_HEADER = [
+    "gamma, deg",
+    "v_n, c",
+    "v_n tan gamma, c",
+    "finished",
+    "largest |drift|",
+    "drift above --max-drift",
+    "a failure",
+]
 
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
+    parts = [p for p in PARTS if p in args.parts]
+    sections = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        sweep_rows = sweep(tmp)
-        long_rows = [long_run(tmp, dt) for dt in (RunOptions().dt,)]
-    body = (
-        "## Time steps until failure\n\n"
-        + markdown_table(
-            ["scene", "integrator", "largest time step that ran", "first failure"], sweep_rows
-        )
-        + "\n\n## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
-        "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
-        + markdown_table(
-            [
-                "dt",
-                "t end",
-                "total energy change / initial kinetic energy",
-                "largest strain of a disk spring at the end",
-            ],
-            long_rows,
-        )
-    )
+        if "steps" in parts:
+            sections.append(
+                "## Time steps until failure\n\n"
+                + markdown_table(
+                    ["scene", "integrator", "largest time step that ran", "first failure"],
+                    sweep(tmp),
+                )
+            )
+        if "speeds" in parts:
+            seeds = ", ".join(map(str, SPEED_SEEDS))
+            sections.append(
+                "## Speeds at which the contact is resolved\n\n"
+                f"Random disk on the default scene at the default run settings (dt "
+                f"{RunOptions().dt:g}), seeds {seeds}. `--vn` takes (0, 0.3] and a run whose "
+                "speed along the wall, v_n tan gamma, exceeds 0.6 c is warned of "
+                "(builder/scene.py's VN and MAX_TANGENTIAL_SPEED): every run below both "
+                "finished.\n\n" + markdown_table(SPEED_HEADER, speed_limits(tmp))
+            )
+        if "long" in parts:
+            sections.append(
+                "## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
+                "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
+                + markdown_table(
+                    [
+                        "dt",
+                        "t end",
+                        "total energy change / initial kinetic energy",
+                        "largest strain of a disk spring at the end",
+                    ],
+                    [long_run(tmp, dt) for dt in (RunOptions().dt,)],
+                )
+            )
+    body = "\n\n".join(sections)
     print(body)
-    command = "python bench/stability.py" + (" --docs" if args.docs else "")
-    path = write_report("stability", "Stability stress tests", command, body, args.docs)
+    name = "stability" if parts == list(PARTS) else "stability_" + "_".join(parts)
+    command = (
+        "python bench/stability.py"
+        + ("" if parts == list(PARTS) else " --parts " + " ".join(parts))
+        + (" --docs" if args.docs else "")
+    )
+    path = write_report(name, "Stability stress tests", command, body, args.docs)
     print(f"wrote {path}")
     return 0
 

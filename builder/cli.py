@@ -135,7 +135,7 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         type=VN,
         default=0.1,
         help=f"normal approach speed, {VN.describe()}: where the default run resolves "
-        "the contact (docs/benchmarks/stability.md) (default: 0.1)",
+        "the contact (docs/benchmarks/stability_speeds.md) (default: 0.1)",
     )
     group.add_argument(
         "--radius",

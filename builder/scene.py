@@ -50,7 +50,7 @@ WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the random disk's")
 WALL_WIDTH = Range(4.0, 100.0, unit="R")
 CONTACT_A = Range(1.0, 10_000.0, unit="a R")
 # Where the default run resolves the contact (bench/stability.py,
-# docs/benchmarks/stability.md, three seeds per point): every normal speed up
+# docs/benchmarks/stability_speeds.md, three seeds per point): every normal speed up
 # to 0.3 c at speeds along the wall up to 0.6 c; at 0.4 c and 0.8 c along the
 # wall, or 0.5 c at 45 degrees, disk points go into the wall.
 VN = Range(0.0, 0.3, low_open=True, unit="units of c")
@@ -68,7 +68,7 @@ def speed_warning(vn: float, gamma_deg: float) -> str | None:
     return (
         f"the disk's speed along the wall, vn tan(gamma) = {tangential:.2f} c, exceeds "
         f"{MAX_TANGENTIAL_SPEED:g} c, the most at which the default run was seen to resolve "
-        "the contact (docs/benchmarks/stability.md): expect disk points inside the wall, "
+        "the contact (docs/benchmarks/stability_speeds.md): expect disk points inside the wall, "
         "or a contact longer than the wall"
     )
 

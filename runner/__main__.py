@@ -170,7 +170,7 @@ def unstable_hint(error: Exception, args) -> str:
         vn = f"v_n = {args.vn:g} c, " if getattr(args, "vn", None) is not None else ""
         return (
             f" ({vn}dt = {args.dt:g} R/c: the contact was not resolved; try a smaller --dt"
-            f"{' or --vn' if vn else ''}; docs/benchmarks/stability.md gives where runs fail)"
+            f"{' or --vn' if vn else ''}; docs/benchmarks/stability_speeds.md)"
         )
     if "unstable" not in text:
         return ""
