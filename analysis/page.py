@@ -68,7 +68,7 @@ def claims_section(fits: dict) -> list[str]:
         "measured by the paper's procedure and model-free (+- the error: the seed "
         "bootstrap's, combined in quadrature with the systematic error where the fit does "
         "not describe the data), and verdicts computed by these rules: "
-        f"{RULE_NEAR}; {RULE_SAME}. What counts as near is MODEL.md section 8's unit of each "
+        f"{RULE_NEAR}; {RULE_SAME}. What counts as near is docs/model.md section 8's unit of each "
         "fact (e 0.1, mu 0.05, beta0 0.2, contacts near a side 10 %; for the share of "
         "angles with beta > 0, which has none there, a tenth).",
         "",

@@ -100,7 +100,7 @@ def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
     lines = [
         "## The wall's ends",
         "",
-        f"This study's wall is {wall_width:g} R wide (MODEL.md's is 8 R), and the contact "
+        f"This study's wall is {wall_width:g} R wide (docs/model.md's is 8 R), and the contact "
         "must not reach its fixed sides. At grazing angles the disk slides, and after the "
         "main contact skims the rough wall, over a long way. Contacts whose disk centre "
         "came within 1 R of a fixed side:",

@@ -11,7 +11,7 @@ import sys
 from datetime import date
 from pathlib import Path
 
-from builder.checks import Range
+from builder.checks import Range, require_out_folder
 from builder.cli import OneLineParser
 from builder.errors import InputError
 from runner.study import cpu_name, runs_folder
@@ -105,7 +105,7 @@ def distinct(option: str, values: list) -> list:
 
 def output_folder(docs: bool) -> Path:
     """docs/benchmarks/ if asked, else runs/bench/ (created)."""
-    folder = DOCS if docs else RUNS
+    folder = DOCS if docs else require_out_folder("the benchmarks' folder", RUNS)
     folder.mkdir(parents=True, exist_ok=True)
     return folder
 

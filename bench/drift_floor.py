@@ -251,7 +251,7 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--out",
         type=OutFolder(),
-        default=runs_folder() / "drift_floor",
+        default=str(runs_folder() / "drift_floor"),  # a text, so that argparse checks it
         help="folder for the runs and their traces (default: runs/drift_floor)",
     )
     parser.add_argument(

@@ -272,7 +272,7 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--out",
         type=OutFolder(),
-        default=WORK,
+        default=str(WORK),  # a text, so that argparse checks it
         help="folder for the runs and their rows (default: runs/bench)",
     )
     parser.add_argument(

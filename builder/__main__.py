@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from .checks import OutFolder, Range
-from .cli import OneLineParser, add_scene_arguments, spec_from_args
+from .cli import OneLineParser, add_scene_arguments, spec_from_args, validate_spec
 from .contact_table import POINTS, table_name, table_text
 from .errors import BuildError, InputError
 from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES, write_scene
@@ -77,7 +77,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "scene":
             spec = spec_from_args(args)
-            spec.validate()  # every value checked before anything is built or written
+            validate_spec(spec)  # every value checked before anything is built or written
             folder = write_scene(build_scene(spec), args.out, args.springs)
             print(f"wrote {folder}/scene.data, scene.lmp, scene.json")
         else:

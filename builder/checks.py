@@ -134,7 +134,7 @@ def folder_problem(path: Path | str) -> str | None:
     try:
         tempfile.TemporaryDirectory(dir=ancestor, prefix=".write-check-").cleanup()
     except OSError as error:
-        return f"cannot be written: {ancestor}: {error.strerror or error}"
+        return f"cannot be made: no folder can be created in {ancestor} ({error.strerror or error})"
     if not os.access(ancestor, os.W_OK | os.X_OK):
         return f"cannot be written: {ancestor}: permission denied"
     return None

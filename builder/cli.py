@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 
-from .checks import Range, at_least, positive
 from .errors import InputError
 from .scene import (
     ANGLE,
@@ -32,17 +31,6 @@ class OneLineParser(argparse.ArgumentParser):
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message}\n")
-
-
-# Kept for the entry points that import them by these names.
-angle = ANGLE
-speed = VN
-positive_float = positive()
-
-
-def count(minimum: int) -> Range:
-    """An integer >= minimum."""
-    return at_least(minimum)
 
 
 def wall_points(text: str) -> int | str:
@@ -106,7 +94,7 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
         type=WALL_WIDTH,
         default=spec.wall_width if defaults else None,
         help=f"the wall's width, {WALL_WIDTH.describe()} (default: {spec.wall_width:g}, "
-        "MODEL.md's; docs/model.md on grazing angles)",
+        "docs/model.md section 1; on grazing angles, its choices as built)",
     )
 
 
@@ -168,7 +156,8 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         type=NU,
         default=None,
         help=f"square lattice only: k2/k1 that gives this Poisson ratio along the axes, "
-        f"{NU.describe()}",
+        f"{NU.describe()}; a scene needs the ratio calibrated (0.1 and 0.3 are; "
+        "python -m calibration run --square K2_OVER_K1 adds one)",
     )
     add_wall_arguments(group)
     group.add_argument(
@@ -178,6 +167,34 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"decay rate of the contact, {CONTACT_A.describe()} (default: 300); finer "
         "disks need a larger one, 300 * sqrt(n_disk / 800)",
     )
+
+
+# SceneSpec's fields by the options that set them, for messages the user can act on.
+OPTIONS = {
+    "gamma_deg": "--gamma",
+    "vn": "--vn",
+    "n_disk": "--n-disk",
+    "n_wall": "--n-wall",
+    "contact_a": "--contact-a",
+    "wall_ka": "--wall-ka",
+    "wall_width": "--wall-width",
+    "k2_over_k1": "--k2-over-k1",
+    "roughness": "--roughness",
+    "radius": "--radius",
+    "seed": "--seed",
+}
+
+
+def validate_spec(spec) -> None:
+    """SceneSpec.validate, its message naming the option rather than the field."""
+    try:
+        spec.validate()
+    except InputError as error:
+        word, _, rest = str(error).partition(" ")
+        field, colon = word.rstrip(":"), word[len(word.rstrip(":")) :]
+        if field in OPTIONS:
+            raise InputError(f"{OPTIONS[field]}{colon} {rest}") from None
+        raise
 
 
 def spec_from_args(args: argparse.Namespace):

@@ -40,7 +40,7 @@ WALL_SAME_C = "same-c"
 # (builder/cli.py) alike.
 ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
 SEED = Range(0, 2**32 - 1, integer=True)
-RADIUS = Range(0.0, 1000.0, low_open=True, unit="R, the unit of length")
+RADIUS = Range(1e-3, 1000.0, unit="R, the unit of length")
 N_DISK = Range(50, 100_000, integer=True)
 N_WALL = Range(50, 400_000, integer=True)
 ROUGHNESS = Range(0.0, 0.1, unit="R")

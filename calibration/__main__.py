@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.checks import OutFolder, Range
+from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
 from builder.errors import InputError
 from builder.materials import TABLE
@@ -77,7 +77,7 @@ def parser() -> OneLineParser:
     run.add_argument(
         "--out",
         type=OutFolder(),
-        default=runs_folder() / "calibration",
+        default=None,
         help="folder for materials.json and materials.md (default: runs/calibration)",
     )
     run.add_argument(
@@ -113,6 +113,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         if args.command == "run":
+            if args.install and args.out is not None:
+                raise InputError("--out does not apply to --install, which writes into the clone")
+            if not args.install:
+                args.out = require_out_folder("--out", args.out or runs_folder() / "calibration")
             table_path, doc = (
                 (TABLE, DOC)
                 if args.install

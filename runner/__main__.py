@@ -8,7 +8,13 @@ import time
 from pathlib import Path
 
 from builder.checks import InPath, OutFolder, require_out_folder
-from builder.cli import OneLineParser, add_scene_arguments, add_wall_arguments, spec_from_args
+from builder.cli import (
+    OneLineParser,
+    add_scene_arguments,
+    add_wall_arguments,
+    spec_from_args,
+    validate_spec,
+)
 from builder.errors import BuildError, InputError
 from builder.scene import CONTACT_A, N_DISK, ROUGHNESS, VN, speed_warning
 
@@ -82,7 +88,7 @@ def add_run_arguments(parser) -> None:
     group.add_argument(
         "--nrespa",
         type=NRESPA,
-        default=defaults.nrespa,
+        default=None,
         help=f"respa: spring steps per step (springs on the inner level), {NRESPA.describe()}",
     )
     group.add_argument(
@@ -95,7 +101,7 @@ def add_run_arguments(parser) -> None:
     group.add_argument(
         "--rule",
         choices=RULES,
-        default=defaults.rule,
+        default=None,
         help="segment contact: lever rule (default) or explicit gradient",
     )
     group.add_argument(
@@ -141,14 +147,21 @@ def add_run_arguments(parser) -> None:
     )
 
 
-def options_from_args(args) -> RunOptions:
+def options_from_args(args: argparse.Namespace) -> RunOptions:
+    """The run's options; an option that does not apply to the chosen
+    integrator or contact is refused, not ignored."""
+    if args.nrespa is not None and args.integrator != "respa":
+        raise InputError(f"--nrespa applies to --integrator respa only, got {args.integrator}")
+    if args.rule is not None and args.contact != "segment":
+        raise InputError(f"--rule applies to --contact segment only, got {args.contact}")
+    defaults = RunOptions()
     return RunOptions(
         dt=args.dt,
         check=args.check,
         integrator=args.integrator,
-        nrespa=args.nrespa,
+        nrespa=args.nrespa if args.nrespa is not None else defaults.nrespa,
         contact=args.contact,
-        rule=args.rule,
+        rule=args.rule if args.rule is not None else defaults.rule,
         springs=args.springs,
         tmax=args.tmax,
         dump_every=args.dump_every,
@@ -229,7 +242,8 @@ def add_study_arguments(study) -> None:
     study.add_argument(
         "preset",
         choices=tuple(PRESETS),
-        help="paper: MODEL.md section 7 in full; demo: the random lattice, 4 samples",
+        help="paper: the study of docs/model.md section 7 in full; demo: the random lattice, "
+        "4 samples",
     )
     grid = study.add_argument_group(
         "the grid (default: the study's study.json if it exists, else the preset's)"
@@ -352,7 +366,7 @@ def main(argv: list[str] | None = None) -> int:
             spec = spec_from_args(args)
             out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
             require_out_folder("--out", out)
-            spec.validate()
+            validate_spec(spec)
             if warning := speed_warning(spec.vn, spec.gamma_deg):
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
             results = [run_impact(spec, out, options_from_args(args))]
@@ -383,12 +397,65 @@ def shown(path: Path | str) -> Path:
     return path.relative_to(Path.cwd()) if path.is_relative_to(Path.cwd()) else path
 
 
+# runner study's options that only the sweep itself uses, and those that make
+# a study; --from-tables takes neither, --report-only not the first.
+SWEEP_OPTIONS = {"workers": 2, "partitions": 0, "batch_size": 16, "retry_failed": False}
+STUDY_OPTIONS = (
+    "samples",
+    "angles",
+    "cot_gamma",
+    "lattices",
+    "extend",
+    "dt",
+    "vn",
+    "roughness",
+    "n_disk",
+    "contact_a",
+    "n_wall",
+    "wall_ka",
+    "wall_fixed",
+    "wall_width",
+    "max_drift",
+    "report_only",
+)
+
+
+def option(dest: str) -> str:
+    return "--" + dest.replace("_", "-")
+
+
+def refuse_idle_options(args: argparse.Namespace) -> None:
+    """An option the command would not use is refused, not ignored."""
+    given = lambda dest, default=None: getattr(args, dest) not in (None, default, False)  # noqa: E731
+    if args.from_tables:
+        unused = [d for d in (*STUDY_OPTIONS, *SWEEP_OPTIONS) if given(d, SWEEP_OPTIONS.get(d))]
+        if unused:
+            raise InputError(
+                f"{option(unused[0])} does not apply to --from-tables, which remakes a page "
+                "from tables alone"
+            )
+        return
+    if args.report_only:
+        unused = [d for d in SWEEP_OPTIONS if given(d, SWEEP_OPTIONS[d])] + (
+            ["extend"] if args.extend else []
+        )
+        if unused:
+            raise InputError(
+                f"{option(unused[0])} does not apply to --report-only, which runs nothing"
+            )
+    if args.partitions == 0 and args.batch_size != SWEEP_OPTIONS["batch_size"]:
+        raise InputError("--batch-size applies to --partitions only")
+    if args.partitions and args.workers != SWEEP_OPTIONS["workers"]:
+        raise InputError("--workers does not apply to --partitions (each partition is a worker)")
+
+
 def run_study_command(args) -> int:
     from analysis.report import report, report_from_tables
 
     from .study import DOC_PAGES, ROOT, record_wall_clock, run_study, study_from_args
 
     docs = ROOT / "docs"
+    refuse_idle_options(args)
     if args.docs and args.preset not in DOC_PAGES:
         raise InputError(
             f"--docs: the {args.preset} preset has no page in docs/; "
@@ -398,6 +465,12 @@ def run_study_command(args) -> int:
         name = args.name or f"{args.preset}_from_tables"
         out = docs / "results" if args.docs else runs_folder() / name
         page = docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else out / "results.md"
+        require_out_folder("--name", out)
+        if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
+            raise InputError(
+                f"--name {name}: {out} holds a study, which the tables would replace; "
+                "give another --name"
+            )
         summary = report_from_tables(args.from_tables, page, preset=args.preset, out=out)
         print(
             f"{summary['rows']} impacts, {summary['failed']} failed; "

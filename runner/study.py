@@ -25,7 +25,7 @@ from builder.lammps_data import write_scene
 from builder.materials import calibrated, square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene, speed_warning, wall_spring_constant
 
-from .impact import check_folder, run_scene
+from .impact import run_scene
 from .lammps_run import ROOT as LAMMPS_ROOT
 from .lammps_run import STYLE_LIBRARIES, lammps_error
 from .options import RunOptions
@@ -130,7 +130,6 @@ class Study:
     def validate(self) -> None:
         if problem := name_problem(self.name):
             raise InputError(f"name {problem}, got {self.name!r}")
-        check_folder(self.folder)  # the clone's own path, for LAMMPS
         require_out_folder("name", self.folder)
         if not self.lattices:
             raise InputError(f"lattices must be among {', '.join(LATTICES)}; got none")
@@ -221,7 +220,12 @@ class Study:
         # common_wall: every lattice meets the same wall (builder.scene.wall_spring_constant),
         # which the results page reads; study.json files from before lack it
         record = {**asdict(self), "common_wall": True}
-        (self.folder / "study.json").write_text(json.dumps(record, indent=1))
+        path = self.folder / "study.json"
+        if path.exists():  # the whole study's time stays while its grid does
+            old = json.loads(path.read_text())
+            if "wall_clock" in old and Study.from_json(path).grid() == self.grid():
+                record["wall_clock"] = old["wall_clock"]
+        path.write_text(json.dumps(record, indent=1))
         jobs = self.jobs()
         if retry_failed:
             for job in jobs:
@@ -296,11 +300,19 @@ def study_from_args(args) -> Study:
         )
         if getattr(args, key) is not None
     }
+    for dest in ("lattices", "cot_gamma"):
+        values = getattr(args, dest) or []
+        if len(set(values)) != len(values):
+            raise InputError(
+                f"--{dest.replace('_', '-')} names a value twice: {' '.join(map(str, values))}"
+            )
     if args.lattices:
-        changes["lattices"] = tuple(dict.fromkeys(args.lattices))
+        changes["lattices"] = tuple(args.lattices)
     if args.cot_gamma:
         if args.angles is not None:
             raise InputError("--angles and --cot-gamma: give one of them")
+        if len(args.cot_gamma) < ANGLES.low:
+            raise InputError(f"--cot-gamma must give at least {ANGLES.low:g} angles")
         changes["cot_gamma"] = tuple(sorted(set(args.cot_gamma), reverse=True))
         changes["angles"] = len(changes["cot_gamma"])
     options = {
@@ -319,13 +331,19 @@ def study_from_args(args) -> Study:
         refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
         if refused:
             said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
-            hint = " (--extend adds samples or lattices)" if set(refused) <= set(EXTENDABLE) else ""
+            hint = (
+                " (--extend adds samples or lattices)"
+                if set(refused) <= set(EXTENDABLE) and not args.extend
+                else ""
+            )
             raise InputError(
                 f"--name {name}: {record.parent} holds a study with another grid: {said}; "
                 f"leave the option out to use the study's{hint}, or give another --name"
             )
     elif args.report_only:
         raise InputError(f"--report-only: no study in {record.parent}; run it first")
+    elif args.extend:
+        raise InputError(f"--extend: no study in {record.parent} to extend")
     study.validate()
     if not args.report_only:
         check_environment(study)

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.helpers import RUNS
+
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = sorted(p for p in (ROOT / "bench").glob("*.py") if p.name != "common.py")
 # A bad combination per script that has one, with the option the line must name.
@@ -87,16 +89,13 @@ def load(script: Path, guarded: bool = False):
 
 
 def listing() -> dict[str, tuple[int, int]]:
-    """Size and mtime of every file a benchmark could write: docs/, runs/bench/
-    and runs/'s own entries (the study benchmarks' folders)."""
+    """Size and mtime of every file a benchmark could write: docs/, and the
+    runs folder the tests give them (tests/helpers.RUNS, $IMPACT_RUNS)."""
     files = {}
-    for folder in (ROOT / "docs", ROOT / "runs" / "bench"):
+    for folder in (ROOT / "docs", RUNS):
         for path in folder.rglob("*") if folder.is_dir() else ():
             stat = path.stat()
             files[str(path)] = (stat.st_size, stat.st_mtime_ns)
-    runs = ROOT / "runs"
-    for path in runs.iterdir() if runs.is_dir() else ():
-        files[str(path)] = (0, path.stat().st_mtime_ns)
     return files
 
 
