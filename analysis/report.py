@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import re
 from collections import Counter
 from pathlib import Path
+
+from builder.errors import InputError
 
 from . import figures
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
-from .result import MAX_DRIFT
+from .result import FINITE, MAX_DRIFT
 from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, write_csv
 
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
@@ -317,15 +320,25 @@ def report_from_tables(
         with (tables / name).open() as handle:
             return list(csv.DictReader(handle))
 
-    info = json.loads((tables / "study.json").read_text())
+    # tables from elsewhere are checked as result.json files are: a number
+    # that is missing or not finite stops the page, before anything is written
+    try:
+        info = json.loads((tables / "study.json").read_text())
+        rows, failed = read("impacts.csv"), read("failed.csv")
+        for line, row in enumerate(rows, start=2):
+            bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
+            if bad:
+                raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
+    except (OSError, ValueError, KeyError) as error:
+        raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
     out = Path(out) if out is not None else Path(tables)
     out.mkdir(parents=True, exist_ok=True)
     if out.resolve() != Path(tables).resolve():
         (out / "study.json").write_bytes((tables / "study.json").read_bytes())
     return render(
         info,
-        read("impacts.csv"),
-        read("failed.csv"),
+        rows,
+        failed,
         out,
         page,
         resamples,

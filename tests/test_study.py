@@ -378,7 +378,7 @@ def test_report_only_takes_the_grid_from_study_json(uninterrupted):
     [
         (["--angles", "4"], "angles 3 there, 4 asked"),
         (["--samples", "3"], "samples 2 there, 3 asked; leave the option out"),
-        (["--samples", "1", "--extend"], "samples 2 there, 1 asked"),
+        (["--extend"], "--extend does not apply to --report-only"),
         (["--dt", "0.001"], "'dt': 0.001"),
     ],
 )
@@ -392,11 +392,15 @@ def test_another_grid_for_a_study_is_refused(uninterrupted, options, words):
     assert table("test_study_other_grid") == uninterrupted
 
 
-def test_extend_adds_samples_and_leaves_the_rest(uninterrupted):
+def test_extend_adds_samples_and_never_removes(uninterrupted):
     copy_of_whole("test_study_extend")
-    proc = report_only("test_study_extend", "--samples", "3", "--extend")
-    assert proc.returncode == 0, proc.stderr
-    assert table("test_study_extend") == uninterrupted  # seed 3 not run yet: no rows
+    fewer = study("test_study_extend", "--samples", "1", "--extend")
+    assert fewer.returncode == 2 and "samples 2 there, 1 asked" in fewer.stderr
+    more = study("test_study_extend", "--samples", "3", "--extend")
+    assert more.returncode == 0, more.stderr
+    assert "6 already done" in more.stdout
+    rows = table("test_study_extend")
+    assert len(rows) == 9 and set(uninterrupted) < set(rows)
     assert (
         "0 of the study's 3 samples" not in (RUNS / "test_study_extend" / "results.md").read_text()
     )
@@ -432,3 +436,37 @@ def test_a_missing_plugin_stops_the_study_before_any_impact(monkeypatch, capsys)
     assert status == 1
     assert len(err.splitlines()) == 1 and "build/libmissing.so is missing: make setup" in err
     assert not (RUNS / name).exists()
+
+
+def committed_tables_copy(folder: Path) -> Path:
+    folder.mkdir(parents=True)
+    for name in ("impacts.csv", "failed.csv", "study.json"):
+        (folder / name).write_bytes((ROOT / "docs" / "results" / name).read_bytes())
+    return folder
+
+
+def test_tables_with_nan_make_no_page(tmp_path, capsys):
+    from runner.__main__ import main
+
+    tables = committed_tables_copy(tmp_path / "tables")
+    text = (tables / "impacts.csv").read_text().splitlines()
+    header, row = text[0].split(","), text[1].split(",")
+    row[header.index("beta")] = "nan"
+    (tables / "impacts.csv").write_text("\n".join([text[0], ",".join(row), *text[2:]]) + "\n")
+    status = main(["study", "paper", "--from-tables", str(tables), "--name", "test_nan_tables"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and len(err.splitlines()) == 1
+    assert "line 2: beta not a finite number" in err
+    assert not (RUNS / "test_nan_tables").exists()
+
+
+def test_tables_never_replace_another_study(uninterrupted, tmp_path, capsys):
+    from runner.__main__ import main
+
+    folder = copy_of_whole("test_study_target")
+    before = {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()}
+    tables = committed_tables_copy(tmp_path / "tables")
+    status = main(["study", "paper", "--from-tables", str(tables), "--name", "test_study_target"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and "holds a study" in err and len(err.splitlines()) == 1
+    assert {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()} == before
