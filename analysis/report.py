@@ -128,6 +128,13 @@ def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
     return lines
 
 
+def angle_options(study: dict) -> str:
+    """--cot-gamma's values if the study gave them, else --angles."""
+    if study.get("cot_gamma"):
+        return "--cot-gamma " + " ".join(f"{c:g}" for c in study["cot_gamma"])
+    return f"--angles {study['angles']}"
+
+
 def wall_options(study: dict) -> str:
     """The study's reading of the wall as options (studies from before the
     readings had the disk's density, springs for its c, the sides held)."""
@@ -191,7 +198,8 @@ def results_page(
         "`*_seed_sd`), `fits.json` (the fits, the model-free measures and the claims below, "
         "with their errors), `failed.csv`. "
         f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
-        f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
+        f"{' '.join(study['lattices'])} {angle_options(study)} --samples {study['samples']} "
+        f"--vn {study.get('vn', 0.1):g} --roughness {study.get('roughness', 0.03):g} "
         f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
         f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
         f"--dt {study['options']['dt']:g} "
