@@ -64,7 +64,7 @@ def claims_section(fits: dict) -> list[str]:
     lines = [
         "## The paper's claims",
         "",
-        "Each fact of MODEL.md section 8 and the paper's conclusions, the project's number "
+        "Each fact of docs/model.md section 8 and the paper's conclusions, the project's number "
         "measured by the paper's procedure and model-free (+- the error: the seed "
         "bootstrap's, combined in quadrature with the systematic error where the fit does "
         "not describe the data), and verdicts computed by these rules: "
@@ -104,7 +104,7 @@ def fits_section(fits: dict) -> list[str]:
     lines = [
         "## Fits",
         "",
-        "Two fits of each theory (MODEL.md section 6). **The paper's way**: Walton with e "
+        "Two fits of each theory (docs/model.md section 6). **The paper's way**: Walton with e "
         "fixed at 0.8 and K = 3; the compliant model with eta = 1.015 (nu = "
         f"{fits['paper']['nu_of_eta']:.3f} in eta^2 = (2 - nu) / (2 (1 - nu))), alpha = 3.02 "
         "and e = 0.8, mu free; both unweighted least squares on the per-angle means. **The "
