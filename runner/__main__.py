@@ -67,7 +67,7 @@ def add_run_arguments(parser) -> None:
         "--nrespa",
         type=count(1),
         default=defaults.nrespa,
-        help="respa: spring steps per step (springs on the inner level)",
+        help="respa: contact steps per step of --dt (the contact alone on the inner level)",
     )
     group.add_argument(
         "--contact",
