@@ -111,6 +111,7 @@ def variants(
         ),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
+        "(d) rebuilds checked every 5 steps, not 1": (IMPACT_DECK, {**common, "neigh_every": "5"}),
         f"(e) {label}: springs + contact": (BENCH_DECK, {**respa_bench, "contact": "segment"}),
         f"(e) {label}: impact deck": (
             IMPACT_DECK,
