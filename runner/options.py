@@ -21,7 +21,7 @@ CHECK_INTERVAL = 0.8  # R/c between checks whether the impact is over
 # rRESPA's split (the outer step, the contact's steps per step) that make bench
 # picks by the default's criteria (docs/benchmarks/time_vs_error.md); not the
 # default integrator until a whole study has been checked against Verlet's.
-RESPA_DT, RESPA_NRESPA = 0.01, 5
+RESPA_DT, RESPA_NRESPA = 0.004, 2
 
 
 @dataclass
