@@ -6,7 +6,8 @@
 On one scene of the default reading (MODEL.md section 8; random disk), the
 same time of the impact (the S steps it takes at the default dt) for:
 
-  (a) the springs only (bench/contact_cost.lmp, contact none);
+  (a) the springs only (bench/contact_cost.lmp, contact none), and the same
+      without fix nve (the atoms stay put: what fix nve, LAMMPS's Modify, costs);
   (b) the springs and the contact (contact segment), no outputs;
   (b) the same with --before's decks/setup.lmp: the contact as a pair style of
       its own, whose neighbour list holds every atom, not as a hybrid sub-style;
@@ -102,6 +103,10 @@ def variants(
         )
     return {
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
+        "(a) springs only, no fix nve (nothing moves)": (
+            BENCH_DECK,
+            {**bench, "contact": "none", "move": "no"},
+        ),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
         f"(b) contact in a list of every atom ({before}'s setup)": (
             BENCH_DECK,
