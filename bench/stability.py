@@ -52,7 +52,7 @@ def sweep(tmp: Path) -> list[list[str]]:
         for label, make in (
             ("verlet", lambda dt: RunOptions(dt=dt)),
             (
-                f"respa {RESPA_NRESPA}",
+                f"respa {RESPA_NRESPA} (contact at dt/{RESPA_NRESPA})",
                 lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=RESPA_NRESPA),
             ),
         ):
