@@ -137,7 +137,7 @@ demo: setup
 	$(PYTHON) -m runner study demo $(STUDY_ARGS)
 
 paper: setup
-	$(PYTHON) -m runner study paper $(STUDY_ARGS)
+	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
 test: setup setup-pypi
 	$(PYTHON) -m pytest -q tests
@@ -162,25 +162,25 @@ lint: $(STAMPS)/python
 # three minutes on two cores. The table is committed; scenes refuse lattices
 # that are not in it.
 calibrate: setup
-	$(PYTHON) -m calibration run
+	$(PYTHON) -m calibration run --install
 
 # LAMMPS at the default settings against the reference on nine scenes
 # (docs/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
-	$(PYTHON) -m reference validate
+	$(PYTHON) -m reference validate --docs
 
 # Run time against error for LAMMPS's integrators and time steps and the
 # reference (docs/benchmarks/time_vs_error.md); about half an hour.
 bench: setup
-	$(PYTHON) bench/time_vs_error.py
+	$(PYTHON) bench/time_vs_error.py --docs
 
 bench-impact: setup
-	$(PYTHON) bench/impact_speed.py
+	$(PYTHON) bench/impact_speed.py --docs
 
 bench-study: setup
-	$(PYTHON) bench/run_settings.py
-	$(PYTHON) bench/stop_rule.py
-	$(PYTHON) bench/stability.py
+	$(PYTHON) bench/run_settings.py --docs
+	$(PYTHON) bench/stop_rule.py --vibration 1 --name stop_rule_vibration --docs
+	$(PYTHON) bench/stability.py --docs
 
 clean:
 	rm -rf runs build

@@ -15,6 +15,7 @@ LABELS = {
     "square_nu0.1": "square, nu = 0.1",
     "square_nu0.3": "square, nu = 0.3",
 }
+WAYS = {"measured": "measured way", "paper": "paper's way"}
 STYLE = {
     "random": ("C0", "o"),
     "triangular": ("C1", "s"),
@@ -48,7 +49,7 @@ def _points(ax, means: list[dict], lattice: str, key: str) -> bool:
             ax.errorbar(
                 [m["cot_gamma"] for m in part],
                 [m[key] for m in part],
-                yerr=[m[f"{key}_se"] for m in part],
+                yerr=[m.get(f"{key}_seed_sd", np.nan) for m in part],
                 fmt=marker,
                 color=color,
                 ms=4,
@@ -69,20 +70,47 @@ def _curve_grid(means: list[dict], lattice: str):
     return grid, np.interp(np.log(grid), np.log(psi), e)
 
 
-def _walton(ax, means, fits, lattice, fits_clear=None):
-    """Walton's fit over all angles, and dashed over the angles clear of the wall's ends."""
+def _walton(ax, means, fits, lattice):
+    """Walton's fits: the measured way (e interpolated between the angles, the
+    lattice's K) solid, the paper's way (e 0.8, K 3) dashed."""
     grid, e = _curve_grid(means, lattice)
-    for source, style, note in ((fits, "-", ""), (fits_clear or {}, "--", " (clear of the ends)")):
-        fit = source.get(lattice, {}).get("walton")
-        if fit:
-            ax.plot(
-                grid,
-                walton_beta(grid, e, fit["mu"], fit["beta0"], fit["K"]),
-                color=STYLE[lattice][0],
-                lw=1,
-                ls=style,
-                label=f"Walton{note}, mu = {fit['mu']:.3f}, beta0 = {fit['beta0']:.3f}",
-            )
+    fit = fits["lattices"].get(lattice, {}).get("walton")
+    if not fit:
+        return
+    for name, style in (("measured", "-"), ("paper", "--")):
+        f = fit[name]
+        ax.plot(
+            grid,
+            walton_beta(grid, e if f["e"] == "per angle" else f["e"], f["mu"], f["beta0"], f["K"]),
+            color=STYLE[lattice][0],
+            lw=1,
+            ls=style,
+            label=f"Walton, {WAYS[name]}: mu = {f['mu']:.3f}, beta0 = {f['beta0']:.3f}",
+        )
+
+
+def _compliant(ax, means, fits, lattice):
+    """The compliant model's fits, measured way solid, paper's way dashed."""
+    fit = fits["lattices"].get(lattice, {}).get("compliant")
+    if not fit:
+        return
+    grid, e = _curve_grid(means, lattice)
+    for name, style in (("measured", "-"), ("paper", "--")):
+        f = fit[name]
+        es = e if f["e"] == "per angle" else np.full_like(grid, f["e"])
+        curve = [
+            compliant_beta(p, Compliant(e=ei, mu=f["mu"], nu=f["nu"], alpha=f["alpha"]))
+            for p, ei in zip(grid, es)
+        ]
+        ax.plot(
+            grid,
+            curve,
+            color="k",
+            lw=1.2,
+            ls=style,
+            label=f"compliant, {WAYS[name]}: mu = {f['mu']:.3f} (nu = {f['nu']:.3f}, "
+            f"alpha = {f['alpha']:.2f})",
+        )
 
 
 def _finish(fig, ax, path: Path, empty: str) -> Path:
@@ -103,25 +131,23 @@ def _finish(fig, ax, path: Path, empty: str) -> Path:
     return path
 
 
-def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = None) -> list[Path]:
-    """The four figures of a study, as PNG files in ``folder``.
+def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
+    """The figures of a study, as PNG files in ``folder``.
 
     Parameters
     ----------
     means : list of dict
-        Means per lattice and angle (``analysis.table.mean_rows``).
+        Means per lattice and angle with their errors (means.csv's rows).
     fits : dict
-        Fits per lattice (``analysis.report.fit_all``).
+        The study's estimates (fits.json, ``analysis.estimates.study_estimates``).
     folder : pathlib.Path
         Where the figures go; created if missing.
-    fits_clear : dict, optional
-        Walton's fits over the angles whose contacts stayed clear of the wall's
-        ends, drawn dashed beside the all-angle fits.
 
     Returns
     -------
     list of pathlib.Path
-        beta_random_triangular.png, e.png, beta_compliant.png, beta_square.png.
+        beta_random_triangular.png, e.png, beta_compliant.png, beta_square.png,
+        mu_eff.png.
     """
     folder.mkdir(parents=True, exist_ok=True)
     paths = []
@@ -129,7 +155,7 @@ def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = 
     fig, ax = _axes("beta")
     for lattice in ("random", "triangular"):
         if _points(ax, means, lattice, "beta"):
-            _walton(ax, means, fits, lattice, fits_clear)
+            _walton(ax, means, fits, lattice)
     paths.append(
         _finish(fig, ax, folder / "beta_random_triangular.png", "no random or triangular data")
     )
@@ -141,28 +167,36 @@ def draw(means: list[dict], fits: dict, folder: Path, fits_clear: dict | None = 
 
     fig, ax = _axes("beta")
     if _points(ax, means, "random", "beta"):
-        _walton(ax, means, fits, "random", fits_clear)
-        fit = fits.get("random", {}).get("compliant")
-        if fit:
-            grid, e = _curve_grid(means, "random")
-            curve = [
-                compliant_beta(p, Compliant(e=ei, mu=fit["mu"], nu=fit["nu"], alpha=fit["alpha"]))
-                for p, ei in zip(grid, e)
-            ]
-            ax.plot(
-                grid,
-                curve,
-                color="k",
-                lw=1.2,
-                label=f"compliant model, mu = {fit['mu']:.3f} (nu = {fit['nu']:.3f})",
-            )
+        _compliant(ax, means, fits, "random")
     paths.append(_finish(fig, ax, folder / "beta_compliant.png", "no random-lattice data"))
 
     fig, ax = _axes("beta")
-    for lattice in ("square_nu0.1", "square_nu0.3"):
-        if _points(ax, means, lattice, "beta"):
-            _walton(ax, means, fits, lattice, fits_clear)
+    for lattice in LABELS:
+        if lattice.startswith("square") and _points(ax, means, lattice, "beta"):
+            _walton(ax, means, fits, lattice)
     paths.append(
         _finish(fig, ax, folder / "beta_square.png", "no square-lattice data in this study")
     )
+
+    fig, ax = _axes("mu_eff = (1 + beta) / ((1 + e) K cot gamma)")
+    for lattice, entry in fits["lattices"].items():
+        mu = entry["measures"]["mu_eff"]
+        on = [j for j, sliding in enumerate(mu["sliding"]) if sliding]
+        if not on:
+            continue
+        color, marker = STYLE.get(lattice, ("k", "o"))
+        ax.errorbar(
+            [mu["cot_gamma"][j] for j in on],
+            [mu["value"][j] for j in on],
+            yerr=[mu["sd"][j] if mu["sd"][j] is not None else np.nan for j in on],
+            fmt=marker + "-",
+            color=color,
+            ms=4,
+            lw=0.8,
+            capsize=2,
+            label=LABELS.get(lattice, lattice),
+        )
+    if ax.has_data():
+        ax.axhline(0.18, color="0.5", lw=0.8, ls=":", label="the paper's mu, 0.18")
+    paths.append(_finish(fig, ax, folder / "mu_eff.png", "no sliding branch in this study"))
     return paths

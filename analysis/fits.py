@@ -1,9 +1,11 @@
-"""Fits of the theories to the measured beta(psi), with bootstrap uncertainties.
+"""Fits of the theories to the per-angle means of beta(psi) (MODEL.md section 6).
 
-The data are per-sample results: for each angle, the e, beta and psi of every
-sample. A fit uses the means per angle, weighted by their standard errors;
-the uncertainty of its parameters is the spread of the fits to bootstrap
-resamples of the samples (drawn with replacement within each angle).
+A fit takes the means per angle (``Means``) and either weights each angle by
+the standard error of its mean of beta (``weighted=True``) or weights every
+angle alike (least squares on the means, the paper's way). e is either the
+measured mean at each angle or a fixed number (the paper's 0.8). The errors
+of the fitted parameters come from the seed bootstrap (``analysis.seeds``),
+not from here.
 """
 
 from __future__ import annotations
@@ -11,8 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, minimize_scalar
 
+from .seeds import SeedTable
 from .theory import Compliant, compliant_beta, walton_beta
 
 
@@ -25,32 +28,42 @@ class Means:
     beta: np.ndarray
     beta_se: np.ndarray
 
+    def select(self, keep: np.ndarray) -> Means:
+        """The angles where ``keep`` is True."""
+        return Means(self.psi[keep], self.e[keep], self.beta[keep], self.beta_se[keep])
 
-def means(groups: list[np.ndarray]) -> Means:
-    """Means per angle of an array (samples, 3) of (psi, e, beta) per group.
+
+def means(table: SeedTable) -> Means:
+    """The per-angle means of a lattice's impacts, at the angles with at least
+    two impacts.
 
     Parameters
     ----------
-    groups : list of numpy.ndarray
-        One (samples, 3) array of (psi, e, beta) per angle
-        (``analysis.table.groups``).
+    table : SeedTable
+        One lattice's impacts by seed and angle.
 
     Returns
     -------
     Means
-        psi, e and beta averaged per angle, and the standard error of beta; an
-        angle whose samples agree exactly gets the median standard error, not
-        infinite weight.
+        psi, e and beta averaged per angle and the standard error of the mean
+        of beta (sd / sqrt(n)); an angle whose samples agree exactly gets the
+        median standard error, not infinite weight.
     """
-    psi = np.array([g[:, 0].mean() for g in groups])
-    e = np.array([g[:, 1].mean() for g in groups])
-    beta = np.array([g[:, 2].mean() for g in groups])
-    se = np.array([g[:, 2].std(ddof=1) / np.sqrt(len(g)) if len(g) > 1 else np.nan for g in groups])
+    keep = table.counts() > 1
+    se = table.standard_error("beta")[keep]
     finite = se[np.isfinite(se) & (se > 0)]
     floor = np.median(finite) if finite.size else 1.0
     # an angle whose samples agree exactly would get infinite weight
     se = np.where(np.isfinite(se) & (se > 0.1 * floor), se, floor)
-    return Means(psi, e, beta, se)
+    return Means(table.mean("cot_gamma")[keep], table.mean("e")[keep], table.mean("beta")[keep], se)
+
+
+def _scale(data: Means, weighted: bool) -> np.ndarray:
+    return data.beta_se if weighted else np.ones_like(data.beta)
+
+
+def _e(data: Means, e: float | None) -> np.ndarray:
+    return data.e if e is None else np.full_like(data.psi, e)
 
 
 # Both models are piecewise in psi (a kink where sliding gives way to
@@ -59,24 +72,29 @@ def means(groups: list[np.ndarray]) -> Means:
 MU_GRID = np.geomspace(1e-3, 3.0, 25)
 
 
-def fit_walton(data: Means, K: float) -> np.ndarray:
-    """(mu, beta0) of Walton's model, e measured at each angle.
+def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = True) -> np.ndarray:
+    """(mu, beta0) of Walton's model by least squares on the per-angle means.
 
     Parameters
     ----------
     data : Means
         Per-angle means (``means``).
     K : float
-        1 + M R^2 / I of the disk.
+        1 + M R^2 / I of the disk (the paper's way: 3).
+    e : float, optional
+        A fixed e (the paper's way: 0.8); default the measured mean e at each angle.
+    weighted : bool
+        Residuals over the standard errors of the means (True), or all alike.
 
     Returns
     -------
     numpy.ndarray
-        The weighted least-squares (mu, beta0).
+        (mu, beta0).
     """
+    e_values, scale = _e(data, e), _scale(data, weighted)
 
     def residuals(p):
-        return (walton_beta(data.psi, data.e, p[0], p[1], K) - data.beta) / data.beta_se
+        return (walton_beta(data.psi, e_values, p[0], p[1], K) - data.beta) / scale
 
     # beta of single impacts can pass 1 (near-normal, tiny tangential velocity)
     beta0 = float(np.clip(np.max(data.beta), -1.4, 1.4))
@@ -84,85 +102,90 @@ def fit_walton(data: Means, K: float) -> np.ndarray:
     return least_squares(residuals, [mu, beta0], bounds=([0.0, -1.5], [5.0, 1.5])).x
 
 
-def fit_compliant(data: Means, nu: float, alpha: float) -> np.ndarray:
-    """mu of the compliant model, with nu and alpha = K measured, e at each angle.
+def compliant_curve(data: Means, mu: float, nu: float, alpha: float, e=None) -> np.ndarray:
+    """The compliant model's beta at the angles of ``data``."""
+    return np.array(
+        [
+            compliant_beta(p, Compliant(e=ei, mu=mu, nu=nu, alpha=alpha))
+            for p, ei in zip(data.psi, _e(data, e))
+        ]
+    )
+
+
+def fit_compliant(
+    data: Means,
+    nu: float,
+    alpha: float,
+    e: float | None = None,
+    weighted: bool = True,
+    start: float | None = None,
+) -> np.ndarray:
+    """mu of the compliant model by least squares on the per-angle means.
 
     Parameters
     ----------
     data : Means
         Per-angle means (``means``).
     nu : float
-        The lattice's Poisson ratio.
+        Poisson ratio (the paper's eta = 1.015 is ``theory.nu_for_eta(1.015)``).
     alpha : float
-        K = 1 + M R^2 / I of the disk.
+        K = 1 + M R^2 / I (the paper's: 3.02).
+    e : float, optional
+        A fixed e (the paper's way: 0.8); default the measured mean e at each angle.
+    weighted : bool
+        Residuals over the standard errors of the means (True), or all alike.
+    start : float, optional
+        A mu near the answer (a bootstrap resample's fit starts from the
+        fit to all the data): the search then brackets it instead of
+        scanning ``MU_GRID``, and falls back to the scan if the answer is at
+        the bracket's edge.
 
     Returns
     -------
     numpy.ndarray
-        The weighted least-squares (mu,), one element.
+        (mu,), one element.
     """
+    scale = _scale(data, weighted)
 
-    def residuals(p):
-        model = [
-            compliant_beta(psi, Compliant(e=e, mu=p[0], nu=nu, alpha=alpha))
-            for psi, e in zip(data.psi, data.e)
-        ]
-        return (np.array(model) - data.beta) / data.beta_se
+    def cost(mu):
+        return float(np.sum(((compliant_curve(data, mu, nu, alpha, e) - data.beta) / scale) ** 2))
 
-    mu = min(MU_GRID, key=lambda m: np.sum(residuals([m]) ** 2))
-    return least_squares(residuals, [mu], bounds=([1e-4], [5.0])).x
-
-
-def bootstrap(
-    groups: list[np.ndarray], fit, resamples: int = 200, rng: np.random.Generator | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """The fit to the data and the standard deviation of fits to resamples.
-
-    Parameters
-    ----------
-    groups : list of numpy.ndarray
-        One (samples, 3) array of (psi, e, beta) per angle.
-    fit : callable
-        Maps ``Means`` to an array of parameters, e.g.
-        ``lambda d: fit_walton(d, K)``.
-    resamples : int
-        Number of resamples, each drawing every angle's samples with replacement.
-    rng : numpy.random.Generator, optional
-        Random draws; default a generator with seed 0 (reproducible).
-
-    Returns
-    -------
-    best : numpy.ndarray
-        The parameters fitted to ``groups``.
-    sd : numpy.ndarray
-        Their standard deviations over the resamples.
-    """
-    rng = rng or np.random.default_rng(0)
-    best = fit(means(groups))
-    draws = []
-    for _ in range(resamples):
-        resampled = [g[rng.integers(0, len(g), len(g))] for g in groups]
-        draws.append(fit(means(resampled)))
-    return best, np.std(draws, axis=0, ddof=1)
+    if start is not None:
+        low, high = start / 1.25, start * 1.25
+        found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
+        if low * 1.001 < found.x < high / 1.001:
+            return np.array([found.x])
+    costs = [cost(m) for m in MU_GRID]
+    k = int(np.argmin(costs))
+    low, high = MU_GRID[max(k - 1, 0)], MU_GRID[min(k + 1, len(MU_GRID) - 1)]
+    found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
+    return np.array([found.x])
 
 
-def reduced_chi2(data: Means, model_beta: np.ndarray, parameters: int) -> float:
-    """Weighted squared residuals per degree of freedom: about 1 if the model
-    describes the means within their standard errors.
+def reduced_chi2(
+    data: Means, model_beta: np.ndarray, parameters: int, sd: np.ndarray | None = None
+) -> float:
+    """Squared residuals over the errors of the means, per degree of freedom:
+    about 1 if the model describes the means within their errors.
 
     Parameters
     ----------
     data : Means
-        Per-angle means with the standard errors of beta.
+        Per-angle means.
     model_beta : numpy.ndarray
         The model's beta at each angle.
     parameters : int
         Number of fitted parameters.
+    sd : numpy.ndarray, optional
+        The errors of the means of beta (the seed bootstrap's); default
+        ``data.beta_se``. The angles are treated as independent, which they
+        are not quite (one seed serves all): a gauge, not a test.
 
     Returns
     -------
     float
         chi2 / (angles - parameters), the divisor at least 1.
     """
-    residuals = (np.asarray(model_beta) - data.beta) / data.beta_se
+    sd = data.beta_se if sd is None else np.asarray(sd)
+    residuals = (np.asarray(model_beta) - data.beta) / sd
     return float(np.sum(residuals**2) / max(len(residuals) - parameters, 1))

@@ -4,17 +4,19 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import re
 from collections import Counter
 from pathlib import Path
 
-import numpy as np
+from builder.errors import InputError
 
 from . import figures
-from .fits import bootstrap, fit_compliant, fit_walton, means, reduced_chi2
-from .result import MAX_DRIFT
-from .table import COLUMNS, MEAN_COLUMNS, collect, groups, mean_rows, near_the_ends, write_csv
-from .theory import Compliant, compliant_beta, walton_beta
+from .claims import claims
+from .estimates import study_estimates
+from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
+from .result import FINITE, MAX_DRIFT
+from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, write_csv
 
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
 
@@ -93,124 +95,15 @@ def drift_section(rows: list[dict]) -> list[str]:
     ]
 
 
-def fit_all(rows: list[dict], resamples: int = 200, compliant: bool = True) -> dict:
-    """Walton's (mu, beta0) for every lattice; the compliant model's mu for the
-    random lattice, with nu from the calibration and alpha = K from the inertia.
-
-    Parameters
-    ----------
-    rows : list of dict
-        One row per impact (impacts.csv, ``analysis.table.collect``).
-    resamples : int
-        Bootstrap resamples for the standard deviations (a tenth of them, at
-        least 20, for the slower compliant fit).
-    compliant : bool
-        Fit the compliant model too (random lattice only).
-
-    Returns
-    -------
-    dict
-        Per study lattice with at least three angles of two samples:
-        ``walton`` (mu, mu_sd, beta0, beta0_sd, K, chi2), ``nu``,
-        ``inertia_ratio``, ``angles`` and, if fitted, ``compliant`` (mu, mu_sd,
-        nu, alpha, chi2); plain floats, as fits.json holds them.
-    """
-    fits = {}
-    for lattice in sorted({r["study_lattice"] for r in rows}):
-        data = groups(rows, lattice)
-        if len(data) < 3 or min(len(g) for g in data) < 2:
-            continue
-        inertia = np.mean(
-            [float(r["disk_inertia_ratio"]) for r in rows if r["study_lattice"] == lattice]
-        )
-        nu = float(next(r["nu"] for r in rows if r["study_lattice"] == lattice))
-        K = 1.0 + 1.0 / inertia
-        (mu, beta0), (mu_sd, beta0_sd) = bootstrap(data, lambda d: fit_walton(d, K), resamples)
-        m = means(data)
-        fits[lattice] = {
-            "walton": {
-                "mu": mu,
-                "mu_sd": mu_sd,
-                "beta0": beta0,
-                "beta0_sd": beta0_sd,
-                "K": K,
-                "chi2": reduced_chi2(m, walton_beta(m.psi, m.e, mu, beta0, K), 2),
-            },
-            "nu": nu,
-            "inertia_ratio": inertia,
-            "angles": len(data),
-        }
-        if lattice == "random" and compliant:
-            (mu_c,), (mu_c_sd,) = bootstrap(
-                data, lambda d: fit_compliant(d, nu, K), max(20, resamples // 10)
-            )
-            curve = [
-                compliant_beta(p, Compliant(e=e, mu=mu_c, nu=nu, alpha=K))
-                for p, e in zip(m.psi, m.e)
-            ]
-            fits[lattice]["compliant"] = {
-                "mu": mu_c,
-                "mu_sd": mu_c_sd,
-                "nu": nu,
-                "alpha": K,
-                "chi2": reduced_chi2(m, curve, 1),
-            }
-    return json.loads(json.dumps(fits, default=float))
-
-
-def model_verdicts(fits: dict) -> list[str]:
-    """Which models describe which lattice's beta(psi), by chi2/dof (2: the line drawn)."""
-    lines = []
-    for lattice, fit in fits.items():
-        for name, label in (("walton", "Walton's model"), ("compliant", "The compliant model")):
-            if name in fit:
-                chi2 = fit[name]["chi2"]
-                verdict = (
-                    "describes" if chi2 <= 2 else "does not describe, within the standard errors,"
-                )
-                lines.append(f"- {label} {verdict} the {lattice} lattice (chi2/dof = {chi2:.1f}).")
-    return lines
-
-
-def beta0_question(fits: dict) -> str:
-    """Does beta0 depend on the Poisson ratio? The square lattices differ only in it."""
-    a, b = fits.get("square_nu0.1"), fits.get("square_nu0.3")
-    if not (a and b):
-        return "This study has not both square lattices; the question needs them."
-    difference = b["walton"]["beta0"] - a["walton"]["beta0"]
-    sigma = np.hypot(a["walton"]["beta0_sd"], b["walton"]["beta0_sd"])
-    z = abs(difference) / sigma
-    verdict = (
-        "depends on the Poisson ratio"
-        if z > 3
-        else "may depend on the Poisson ratio: a hint, not yet a finding (more samples settle it)"
-        if z > 2
-        else "shows no dependence on the Poisson ratio within the uncertainty"
-    )
-    return (
-        f"beta0 = {a['walton']['beta0']:.3f} +- {a['walton']['beta0_sd']:.3f} for nu = 0.1 and "
-        f"{b['walton']['beta0']:.3f} +- {b['walton']['beta0_sd']:.3f} for nu = 0.3: a difference "
-        f"of {difference:+.3f} +- {sigma:.3f} ({abs(difference) / sigma:.1f} standard "
-        f"deviations), so beta0 {verdict}."
-    )
-
-
-def clear_of_the_ends(rows: list[dict], means: list[dict]) -> list[dict]:
-    """The rows at the angles where few of a lattice's contacts came within a
-    radius of a fixed side of the wall (table.near_the_ends)."""
-    clear = {(m["study_lattice"], m["gamma_deg"]) for m in means if not near_the_ends(m)}
-    return [r for r in rows if (r["study_lattice"], float(r["gamma_deg"])) in clear]
-
-
-def wall_end_section(means: list[dict], fits_clear: dict, wall_width: float) -> list[str]:
-    """How many contacts felt the wall's ends, and the fits without those angles."""
+def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
+    """How many contacts felt the wall's ends."""
     near = [m for m in means if m["near_side"]]
     if not near:
         return []
     lines = [
         "## The wall's ends",
         "",
-        f"This study's wall is {wall_width:g} R wide (MODEL.md's is 8 R), and the contact "
+        f"This study's wall is {wall_width:g} R wide (docs/model.md's is 8 R), and the contact "
         "must not reach its fixed sides. At grazing angles the disk slides, and after the "
         "main contact skims the rough wall, over a long way. Contacts whose disk centre "
         "came within 1 R of a fixed side:",
@@ -228,19 +121,11 @@ def wall_end_section(means: list[dict], fits_clear: dict, wall_width: float) -> 
         "degrees, and the mean e moved by 0.026 to 0.034 at 63.5 to 80.5 degrees (0.9 to "
         "1.6 standard errors), beta by at most 0.011 (random lattice, 12 samples: "
         "`python bench/wall_width.py`, docs/benchmarks/wall_width.md, docs/model.md). "
-        "Walton's fit over the angles where at most 10 % of the contacts came near a side, "
-        "the results that MODEL.md's 8 R wall gives where its condition holds:",
+        "The fits over the angles where at most 10 % of the contacts came near a side are "
+        "among the fitting choices above (`angles` clear).",
         "",
-        "| lattice | angles | Walton mu | Walton beta0 | chi2/dof |",
-        "|---|---|---|---|---|",
     ]
-    for lattice, fit in fits_clear.items():
-        walton = fit["walton"]
-        lines.append(
-            f"| {lattice} | {fit['angles']} | {walton['mu']:.3f} +- {walton['mu_sd']:.3f} "
-            f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {walton['chi2']:.1f} |"
-        )
-    return lines + [""]
+    return lines
 
 
 def wall_options(study: dict) -> str:
@@ -274,10 +159,10 @@ def results_page(
     failed: list[dict],
     seconds: float,
     samples_done: int,
-    fits_clear: dict | None = None,
     preset: str = "paper",
     tables: str = "",
 ) -> str:
+    """The results page (markdown) of a study from its tables and estimates."""
     tables_where = (
         f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
         "makes this page again without the runs)"
@@ -302,8 +187,9 @@ def results_page(
         f"failed{drift_note}. LAMMPS time "
         f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
         f"Tables{tables_where}: `impacts.csv` (one row per impact), "
-        "`means.csv` (means and standard errors per lattice and angle), `fits.json`, "
-        "`failed.csv`. "
+        "`means.csv` (means per lattice and angle, with their seed-bootstrap errors "
+        "`*_seed_sd`), `fits.json` (the fits, the model-free measures and the claims below, "
+        "with their errors), `failed.csv`. "
         f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
         f"{' '.join(study['lattices'])} --angles {study['angles']} --samples {study['samples']} "
         f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
@@ -311,51 +197,16 @@ def results_page(
         f"--dt {study['options']['dt']:g} "
         f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}`.",
         "",
-        "## Fitted parameters",
-        "",
-        "| lattice | nu | I/(MR^2) | Walton mu | Walton beta0 | Walton chi2/dof | compliant mu "
-        "| compliant chi2/dof |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
-    for lattice, fit in fits.items():
-        walton = fit["walton"]
-        compliant = fit.get("compliant")
-        compliant_mu = (
-            f"{compliant['mu']:.3f} +- {compliant['mu_sd']:.3f} | {compliant['chi2']:.1f}"
-            if compliant
-            else "- | -"
-        )
-        lines.append(
-            f"| {lattice} | {fit['nu']:.3f} | {fit['inertia_ratio']:.4f} "
-            f"| {walton['mu']:.3f} +- {walton['mu_sd']:.3f} "
-            f"| {walton['beta0']:.3f} +- {walton['beta0_sd']:.3f} | {walton['chi2']:.1f} "
-            f"| {compliant_mu} |"
-        )
-    lines += [
-        "",
-        "Uncertainties: standard deviations of the fits to bootstrap resamples of the "
-        "samples at each angle. Walton's e is the measured mean e at each angle; K = 1 + "
-        "MR^2/I from the measured inertia. The compliant model takes nu from the "
-        "calibration (docs/materials.md). chi2/dof: the fit's weighted squared residuals "
-        "per degree of freedom against the means per angle; about 1 if the model "
-        "describes the data within its standard errors, well above 1 if it does not.",
-        "",
-        *model_verdicts(fits),
-        "",
-        "## Does beta0 depend on the Poisson ratio?",
-        "",
-        beta0_question(fits),
-        "",
-    ]
-    if fits_clear and fits_clear.keys() >= {"square_nu0.1", "square_nu0.3"}:
-        lines += [
-            "Over the angles whose contacts stayed clear of the wall's ends (below): "
-            + beta0_question(fits_clear),
-            "",
-        ]
-    lines += [
-        *wall_end_section(means, fits_clear or {}, study.get("wall_width", 8.0)),
+        *statistics_section(fits),
+        *claims_section(fits),
+        *fits_section(fits),
+        *measures_section(fits, figure_dir),
+        *nu_section(fits, study, rows, means),
+        *wall_end_section(means, study.get("wall_width", 8.0)),
         "## Figures",
+        "",
+        "Error bars: the seed-bootstrap errors of the per-angle means. Solid lines: the "
+        "measured-way fits; dashed: the paper's way.",
         "",
     ]
     for name, title in (
@@ -365,7 +216,7 @@ def results_page(
         ),
         ("e", "e against cot gamma"),
         ("beta_compliant", "beta against cot gamma, random lattice, with the compliant model"),
-        ("beta_square", "beta against cot gamma, square lattices (nu = 0.1 and 0.3)"),
+        ("beta_square", "beta against cot gamma, square lattices, with Walton's fits"),
     ):
         lines += [f"![{title}]({figure_dir}/{name}.png)", "", f"*{title}*", ""]
     lines += drift_section(rows) + failure_section(failed)
@@ -438,7 +289,11 @@ def report(
 
 
 def report_from_tables(
-    tables: Path, page: Path, resamples: int = 200, preset: str = "paper"
+    tables: Path,
+    page: Path,
+    resamples: int = 200,
+    preset: str = "paper",
+    out: Path | None = None,
 ) -> dict:
     """The page and figures of a study from its tables alone (docs/results/).
 
@@ -446,11 +301,14 @@ def report_from_tables(
     ----------
     tables : pathlib.Path
         A folder with impacts.csv, failed.csv and study.json (``report``'s
-        ``tables``); means.csv and fits.json are written again into it.
+        ``tables``); read only, unless it is ``out``.
     page : pathlib.Path
         Where the page goes; the figures go into ``figures/`` beside it.
     resamples, preset
         As for ``report``.
+    out : pathlib.Path, optional
+        Where the tables (with means.csv and fits.json made again) and
+        study.json go; default ``tables`` itself.
 
     Returns
     -------
@@ -462,12 +320,26 @@ def report_from_tables(
         with (tables / name).open() as handle:
             return list(csv.DictReader(handle))
 
-    info = json.loads((tables / "study.json").read_text())
+    # tables from elsewhere are checked as result.json files are: a number
+    # that is missing or not finite stops the page, before anything is written
+    try:
+        info = json.loads((tables / "study.json").read_text())
+        rows, failed = read("impacts.csv"), read("failed.csv")
+        for line, row in enumerate(rows, start=2):
+            bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
+            if bad:
+                raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
+    except (OSError, ValueError, KeyError) as error:
+        raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
+    out = Path(out) if out is not None else Path(tables)
+    out.mkdir(parents=True, exist_ok=True)
+    if out.resolve() != Path(tables).resolve():
+        (out / "study.json").write_bytes((tables / "study.json").read_bytes())
     return render(
         info,
-        read("impacts.csv"),
-        read("failed.csv"),
-        tables,
+        rows,
+        failed,
+        out,
         page,
         resamples,
         preset,
@@ -496,9 +368,10 @@ def render(
     rows = sorted(rows, key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
     write_csv(rows, out / "impacts.csv", COLUMNS)
     write_csv(failed, out / "failed.csv", FAILED_COLUMNS)
-    means = mean_rows(rows)
+    fits, errors = study_estimates(rows, resamples)
+    fits["claims"] = claims(fits)
+    means = mean_rows(rows, errors)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
-    fits = fit_all(rows, resamples)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
     seconds = sum(float(r["wall_seconds"]) for r in rows)
@@ -507,8 +380,7 @@ def render(
     finished = Counter(int(float(r["seed"])) for r in rows)
     finished.update(int(float(f["seed"])) for f in failed)
     samples_done = sum(count >= per_sample for count in finished.values())
-    fits_clear = fit_all(clear_of_the_ends(rows, means), resamples, compliant=False)
-    figures.draw(means, fits, figure_dir, fits_clear)
+    figures.draw(means, fits, figure_dir)
     page.write_text(
         results_page(
             info,
@@ -519,7 +391,6 @@ def render(
             failed,
             seconds,
             samples_done,
-            fits_clear,
             preset,
             tables,
         )

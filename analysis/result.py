@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import tempfile
 from pathlib import Path
@@ -35,6 +36,10 @@ REQUIRED = (
     "steps",
     "wall_seconds",
 )
+
+
+# REQUIRED's numbers: a result with one of them not finite is not a result.
+FINITE = tuple(key for key in REQUIRED if key != "lattice")
 
 
 class UnreadableResult(ValueError):
@@ -100,6 +105,7 @@ def analyse_run(folder: Path | str) -> dict:
         "wall_fixed": spec["wall_fixed"],
         "wall_spacing": scene["wall_spacing"],
         "ka_wall_over_disk": scene["ka_wall"] / scene["ka_disk"],
+        "ka_wall": scene["ka_wall"],
         "disk_inertia_ratio": scene["disk_inertia_ratio"],
         "n_disk_points": scene["n_disk_points"],
         "n_wall_points": scene["n_wall_points"],
@@ -132,7 +138,15 @@ def read_result(path: Path | str) -> dict:
         raise UnreadableResult(
             f"{path}: incomplete (no {', '.join(missing[:4])}{', ...' if len(missing) > 4 else ''})"
         )
+    # a run that produced these cannot have been right (run_scene never writes them)
+    wrong = [key for key in FINITE if not _finite(values[key])]
+    if wrong:
+        raise UnreadableResult(f"{path}: not a result ({', '.join(wrong)} not a finite number)")
     return values
+
+
+def _finite(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def write_json_atomically(data: dict, path: Path | str) -> None:

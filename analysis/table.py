@@ -35,6 +35,7 @@ COLUMNS = (
     "wall_fixed",
     "n_wall_points",
     "ka_wall_over_disk",
+    "ka_wall",
     "disk_inertia_ratio",
     "nu",
     "steps",
@@ -47,21 +48,25 @@ COLUMNS = (
     "lammps_version",
     "git_revision",
 )
+# The columns of means.csv. "*_seed_sd": the error of the mean, the standard
+# deviation over resamples of whole seeds (analysis.seeds).
 MEAN_COLUMNS = (
     "study_lattice",
     "gamma_deg",
     "cot_gamma",
     "samples",
     "e",
-    "e_se",
+    "e_seed_sd",
     "beta",
-    "beta_se",
+    "beta_seed_sd",
     "omega",
-    "omega_se",
+    "omega_seed_sd",
     "contact_time",
-    "contact_time_se",
+    "contact_time_seed_sd",
     "vibration_disk",
+    "vibration_disk_seed_sd",
     "vibration_wall",
+    "vibration_wall_seed_sd",
     "disk_inertia_ratio",
     "near_side",
 )
@@ -146,26 +151,30 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 values["wall_ka"] = spec.get("wall_ka", "same-c")
                 values["wall_fixed"] = spec["wall_fixed"]
                 values["ka_wall_over_disk"] = scene["ka_wall"] / scene["ka_disk"]
+            if "ka_wall" not in values and scene_file.exists():  # nor this one
+                values["ka_wall"] = json.loads(scene_file.read_text())["ka_wall"]
             if "drift_exceeded" not in values:  # nor this one
                 values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
             rows.append(row(values, lattice))
     return rows
 
 
-def mean_rows(rows: list[dict]) -> list[dict]:
-    """Means and standard errors per study lattice and angle.
+def mean_rows(rows: list[dict], errors: dict | None = None) -> list[dict]:
+    """Means per study lattice and angle, with their errors where given.
 
     Parameters
     ----------
     rows : list of dict
         One row per impact (``collect``).
+    errors : dict, optional
+        (lattice, gamma_deg) -> {"e_seed_sd": ..., ...}: the errors of the
+        means (``analysis.estimates.study_estimates``), merged into the rows.
 
     Returns
     -------
     list of dict
-        The rows of means.csv, sorted by lattice and angle: the mean and
-        standard error of e, beta, omega, ... (``e``, ``e_se``, ...), the number
-        of samples and ``near_side``.
+        The rows of means.csv, sorted by lattice and angle: the means of e,
+        beta, omega, ..., the number of samples, ``near_side`` and the errors.
     """
     groups: dict[tuple, list[dict]] = {}
     for r in rows:
@@ -183,35 +192,8 @@ def mean_rows(rows: list[dict]) -> list[dict]:
             "vibration_wall",
             "disk_inertia_ratio",
         ):
-            values = np.array([float(r[name]) for r in group])
-            mean[name] = float(values.mean())
-            mean[f"{name}_se"] = (
-                float(values.std(ddof=1) / np.sqrt(len(values))) if len(values) > 1 else 0.0
-            )
+            mean[name] = float(np.mean([float(r[name]) for r in group]))
         mean["near_side"] = sum(float(r["side_clearance"]) < NEAR_SIDE for r in group)
+        mean.update((errors or {}).get((lattice, gamma), {}))
         out.append(mean)
     return out
-
-
-def groups(rows: list[dict], lattice: str) -> list[np.ndarray]:
-    """(psi, e, beta) per sample, one array per angle, for the fits.
-
-    Parameters
-    ----------
-    rows : list of dict
-        One row per impact (``collect``).
-    lattice : str
-        The study's name of the lattice whose rows to take.
-
-    Returns
-    -------
-    list of numpy.ndarray
-        One (samples, 3) array per angle, in increasing angle.
-    """
-    by_angle: dict[float, list] = {}
-    for r in rows:
-        if r["study_lattice"] == lattice:
-            by_angle.setdefault(float(r["gamma_deg"]), []).append(
-                (float(r["cot_gamma"]), float(r["e"]), float(r["beta"]))
-            )
-    return [np.array(by_angle[g]) for g in sorted(by_angle)]

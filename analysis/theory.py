@@ -68,6 +68,24 @@ def eta_squared(nu: float) -> float:
     return (2.0 - nu) / (2.0 * (1.0 - nu))
 
 
+def nu_for_eta(eta: float) -> float:
+    """The Poisson ratio whose eta^2 = (2 - nu) / (2 (1 - nu)) is eta^2: how a
+    model given by eta (the paper's 1.015) is written with ``Compliant``.
+
+    Parameters
+    ----------
+    eta : float
+        sqrt(k_n / k_t), at least 1/sqrt(2) (nu below 1).
+
+    Returns
+    -------
+    float
+        (2 - 2 eta^2) / (1 - 2 eta^2).
+    """
+    eta2 = eta * eta
+    return (2.0 - 2.0 * eta2) / (1.0 - 2.0 * eta2)
+
+
 @dataclass(frozen=True)
 class Compliant:
     """Parameters of the compliant model."""
@@ -109,13 +127,16 @@ def _first_root(function, start: float, end: float, samples: int = 400) -> float
     """The first zero of ``function`` in (start, end], by a scan and Brent's method."""
     grid = np.linspace(start, end, samples + 1)
     values = np.asarray(function(grid), float)  # the functions take arrays
-    # a zero at the very start is the transition just made, not a new one
-    for k in range(1, samples + 1):
-        if values[k] == 0.0:
-            return float(grid[k])
-        if np.sign(values[k]) != np.sign(values[k - 1]) and values[k - 1] != 0.0:
-            return float(brentq(function, grid[k - 1], grid[k], xtol=1e-14, rtol=1e-13))
-    return None
+    # a zero at the very start is the transition just made, not a new one:
+    # the first sample after it that is a zero or ends a change of sign
+    before, after = values[:-1], values[1:]
+    hits = np.flatnonzero((after == 0.0) | ((np.sign(after) != np.sign(before)) & (before != 0.0)))
+    if not hits.size:
+        return None
+    k = hits[0] + 1
+    if values[k] == 0.0:
+        return float(grid[k])
+    return float(brentq(function, grid[k - 1], grid[k], xtol=1e-14, rtol=1e-13))
 
 
 def compliant_beta(psi: float, model: Compliant) -> float:

@@ -1,7 +1,7 @@
 """What running an impact in chunks cost: the chunked deck against one run with fix halt.
 
-    python bench/chunk_cost.py [--repeats 7] [--gamma 30] [--before f233bf1]
-                               [--respa 0.004/2 0.01/5]
+    python bench/chunk_cost.py [--repeats 7] [--gamma 30] [--seed 1] [--before f233bf1]
+                               [--respa 0.004/2 0.01/5] [--docs]
 
 Until --before (the last commit whose deck ran in chunks), decks/impact.lmp ran
 an impact as `run ${check}` commands in a loop, deciding between them whether
@@ -24,15 +24,27 @@ might stop, which the argument now says).
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from pathlib import Path
 
-from common import ROOT, file_at, loop_seconds, markdown_table, median, write_report
-from loop_overhead import run_deck
+from common import (
+    REPEATS,
+    ROOT,
+    bench_parser,
+    file_at,
+    loop_seconds,
+    markdown_table,
+    median,
+    refuse,
+    write_report,
+)
+from loop_overhead import commit_name, respa_split, run_deck
 
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
-from runner.options import RunOptions
+from builder.scene import ANGLE, SEED, SceneSpec, build_scene
+from runner.options import DT, NRESPA, RunOptions
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
 OLD_INCLUDE = "include         decks/setup.lmp\n"
@@ -49,38 +61,63 @@ def chunked_deck(revision: str, folder: Path) -> Path:
     )
     for old, new in ((OLD_INCLUDE, OLD_INCLUDE + setup_each_run), *zip(OLD_CALL, NEW_CALL)):
         if text.count(old) != 1:
-            raise SystemExit(f"--before {revision}: its deck has not one {old.strip()!r}")
+            raise InputError(f"--before {revision}: its deck has not one {old.strip()!r}")
         text = text.replace(old, new)
     path = folder / "impact_chunks.lmp"
     path.write_text(text)
     return path
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=7, help="runs of each (default: 7)")
-    parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
-    parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
-    parser.add_argument("--before", default="f233bf1", help="a commit with the chunked deck")
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=7,
+        help=f"runs of each, {REPEATS.describe()} (default: 7)",
+    )
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=30.0,
+        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
+    )
+    parser.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
+    parser.add_argument(
+        "--before",
+        type=commit_name,
+        default="f233bf1",
+        help="a commit with the chunked deck (default: f233bf1)",
+    )
     parser.add_argument(
         "--respa",
+        type=respa_split,
         nargs="*",
-        default=["0.004/2", "0.01/5"],
-        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N",
+        default=["0.004/2", "0.01/5"],  # texts, so that argparse checks them
+        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N "
+        f"(OUTER {DT.describe()}, N {NRESPA.describe()}; default: 0.004/2 0.01/5)",
     )
-    args = parser.parse_args()
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
 
     integrators = {f"verlet dt={RunOptions().dt:g}": RunOptions()}
-    for split in args.respa:
-        dt, nrespa = float(split.split("/")[0]), int(split.split("/")[1])
+    for dt, nrespa in args.respa:
         integrators[f"respa {nrespa} dt={dt:g}"] = RunOptions(
             integrator="respa", nrespa=nrespa, dt=dt
         )
-    scene = build_scene(SceneSpec(gamma_deg=args.gamma, seed=args.seed))
     runs: dict[tuple[str, str], list[dict]] = {}
     with tempfile.TemporaryDirectory() as tmp:
+        try:  # the old deck first: a commit whose deck does not fit starts no work
+            decks = {"chunks": chunked_deck(args.before, Path(tmp)), "one run": IMPACT_DECK}
+        except InputError as error:
+            return refuse(__file__, error)
+        scene = build_scene(SceneSpec(gamma_deg=args.gamma, seed=args.seed))
         folder = write_scene(scene, Path(tmp) / "scene")
-        decks = {"chunks": chunked_deck(args.before, Path(tmp)), "one run": IMPACT_DECK}
         for repeat in range(args.repeats):
             for label, options in integrators.items():
                 for kind, deck in decks.items():
@@ -131,11 +168,16 @@ def main() -> None:
     )
     print(body)
     command = (
-        f"python bench/chunk_cost.py --repeats {args.repeats} --gamma {args.gamma:g} "
-        f"--before {args.before} --respa {' '.join(args.respa)}"
+        f"python bench/chunk_cost.py --repeats {args.repeats} --gamma {args.gamma:g}"
+        + (f" --seed {args.seed}" if args.seed != 1 else "")
+        + f" --before {args.before}"
+        + f" --respa {' '.join(f'{dt:g}/{n}' for dt, n in args.respa)}"
+        + (" --docs" if args.docs else "")
     )
-    print(f"wrote {write_report('chunk_cost', 'What the chunks cost', command, body)}")
+    title = "What the chunks cost"
+    print(f"wrote {write_report('chunk_cost', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,6 +1,6 @@
 """What the contact costs per step, and what the pair variant changes.
 
-    python bench/contact_cost.py [--repeats 5]
+    python bench/contact_cost.py [--repeats 5] [--steps 2000] [--seeds 2] [--docs]
 
 1. The default scene (random lattice, seed 1, 45 degrees) for 2000 steps from
    the start of the impact, with the segment contact, the pair variant, and no
@@ -16,10 +16,22 @@ from __future__ import annotations
 import argparse
 import re
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
-from common import BENCH_DECK, ROOT, markdown_table, median, timer_seconds, write_report
+from common import (
+    BENCH_DECK,
+    REPEATS,
+    ROOT,
+    SEED_COUNT,
+    TIMED_STEPS,
+    bench_parser,
+    markdown_table,
+    median,
+    timer_seconds,
+    write_report,
+)
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -100,12 +112,31 @@ def restitution_table(tmp: Path, seeds: int) -> str:
     )
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--steps", type=int, default=2000)
-    parser.add_argument("--seeds", type=int, default=2)
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=5,
+        help=f"timed runs of each contact, {REPEATS.describe()} (default: 5)",
+    )
+    parser.add_argument(
+        "--steps",
+        type=TIMED_STEPS,
+        default=2000,
+        help=f"steps of each timed run, {TIMED_STEPS.describe()} (default: 2000)",
+    )
+    parser.add_argument(
+        "--seeds",
+        type=SEED_COUNT,
+        default=2,
+        help=f"seeds 1 to N of the e and beta table, {SEED_COUNT.describe()} (default: 2)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         scene = write_scene(build_scene(SceneSpec(gamma_deg=45.0)), tmp / "scene")
@@ -117,9 +148,20 @@ def main() -> None:
         f"## e and beta: segment contact against the pair variant\n\n{restitution}\n"
     )
     print(body)
-    title, command = "Contact: cost and pair variant", "python bench/contact_cost.py"
-    print(f"wrote {write_report('contact_cost', title, command, body)}")
+    title = "Contact: cost and pair variant"
+    command = "python bench/contact_cost.py" + "".join(
+        f" --{name} {value}"
+        for name, value, default in (
+            ("repeats", args.repeats, 5),
+            ("steps", args.steps, 2000),
+            ("seeds", args.seeds, 2),
+        )
+        if value != default
+    )
+    command += " --docs" if args.docs else ""
+    print(f"wrote {write_report('contact_cost', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

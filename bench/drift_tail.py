@@ -1,7 +1,7 @@
 """The tail of the energy drift: a study's worst impacts again at other steps.
 
     python bench/drift_tail.py --impacts runs/paper/impacts.csv [--worst 24]
-                               [--dts 0.003 0.002 0.001]
+                               [--dts 0.003 0.002 0.001] [--docs]
 
 make bench chooses the time step on nine scenes; a study has thousands, and a
 few of them drift far more than those nine. This takes the impacts of a study
@@ -9,38 +9,98 @@ with the largest |energy drift| and runs each again at every step given (the
 study's settings otherwise), for how the tail shrinks with the step. The
 table gives each impact's drift per step and, per step, the median, the
 largest and how many are above 5e-3 (make bench's criterion) and above the
-accuracy guard's 0.05. Writes docs/benchmarks/drift_tail.md.
+accuracy guard's 0.05. Writes runs/bench/drift_tail.md (--docs: the committed
+docs/benchmarks/drift_tail.md).
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import math
+import sys
 import tempfile
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import markdown_table, write_report
+from common import bench_parser, distinct, markdown_table, refuse, write_report
 
 from analysis.result import MAX_DRIFT
+from builder.checks import InPath, Range
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.scene import build_scene
+from builder.scene import ANGLE, SEED, build_scene
 from runner.impact import run_scene
-from runner.study import PRESETS
+from runner.options import DT
+from runner.study import LATTICES, PRESETS
 
 ENERGY_TOLERANCE = 5e-3  # make bench's criterion on rough scenes
+WORST = Range(1, 10_000, integer=True)
+COLUMNS = ("study_lattice", "seed", "gamma_deg", "energy_drift", "dt")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--impacts", type=Path, required=True, help="a study's impacts.csv")
-    parser.add_argument("--worst", type=int, default=24, help="impacts to rerun (default: 24)")
-    parser.add_argument("--dts", type=float, nargs="+", default=[0.003, 0.002, 0.001])
-    args = parser.parse_args()
+def read_impacts(path: Path) -> list[dict]:
+    """The rows of a study's impacts.csv, worst |energy drift| first; a file that
+    is not one (a missing column, an unknown lattice, a value that is not a
+    finite number) is refused, naming --impacts."""
+    with path.open(newline="") as handle:
+        reader = csv.DictReader(handle)
+        missing = [c for c in COLUMNS if c not in (reader.fieldnames or [])]
+        if missing:
+            raise InputError(f"--impacts: {path} has no column {', '.join(missing)}")
+        rows = list(reader)
+    for line, row in enumerate(rows, start=2):
+        if row["study_lattice"] not in LATTICES:
+            raise InputError(
+                f"--impacts: {path} line {line}: lattice {row['study_lattice']!r} is not one of "
+                + ", ".join(LATTICES)
+            )
+        try:
+            good = (
+                SEED.contains(int(row["seed"]))
+                and ANGLE.contains(float(row["gamma_deg"]))
+                and all(math.isfinite(float(row[c])) for c in ("energy_drift", "dt"))
+            )
+        except ValueError:
+            good = False
+        if not good:
+            raise InputError(
+                f"--impacts: {path} line {line}: its seed, angle, drift or dt is out of range"
+            )
+    return sorted(rows, key=lambda r: -abs(float(r["energy_drift"])))
 
-    with args.impacts.open() as handle:
-        rows = sorted(csv.DictReader(handle), key=lambda r: -abs(float(r["energy_drift"])))
+
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--impacts", type=InPath("file"), required=True, help="a study's impacts.csv"
+    )
+    parser.add_argument(
+        "--worst",
+        type=WORST,
+        default=24,
+        help=f"impacts to rerun, {WORST.describe()}, at most the study's (default: 24)",
+    )
+    parser.add_argument(
+        "--dts",
+        type=DT,
+        nargs="+",
+        default=[0.003, 0.002, 0.001],
+        help=f"time steps, each {DT.describe()} (default: 0.003 0.002 0.001)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        distinct("--dts", args.dts)
+        rows = read_impacts(args.impacts)
+        if args.worst > len(rows):
+            raise InputError(f"--worst must be at most the {len(rows)} impacts of {args.impacts}")
+    except InputError as error:
+        return refuse(__file__, error)
     worst = rows[: args.worst]
     study = PRESETS["paper"]
     drift = np.zeros((len(worst), len(args.dts)))
@@ -87,9 +147,12 @@ def main() -> None:
     command = (
         f"python bench/drift_tail.py --impacts {args.impacts} --worst {args.worst} --dts "
         + " ".join(f"{dt:g}" for dt in args.dts)
+        + (" --docs" if args.docs else "")
     )
-    print(f"wrote {write_report('drift_tail', 'The tail of the energy drift', command, body)}")
+    title = "The tail of the energy drift"
+    print(f"wrote {write_report('drift_tail', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,6 +1,6 @@
 """Steps per second of the default scene: bond styles, 1 vs 2 ranks.
 
-    make bench-impact        (or: python bench/impact_speed.py --repeats 3)
+    make bench-impact        (or: python bench/impact_speed.py --repeats 3 [--docs])
 
 Each configuration runs the whole default impact (random lattice, seed 1,
 45 degrees, segment contact, the default dt) several times; the table gives medians
@@ -11,10 +11,11 @@ whole impact (start of lmp to result).
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from pathlib import Path
 
-from common import loop_seconds, markdown_table, median, write_report
+from common import REPEATS, bench_parser, loop_seconds, markdown_table, median, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -22,10 +23,19 @@ from runner.impact import run_scene
 from runner.options import RunOptions
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=3,
+        help=f"runs of each configuration, {REPEATS.describe()} (default: 3)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
 
     scene = build_scene(SceneSpec(gamma_deg=45.0))
     atoms = scene.info["n_atoms"]
@@ -62,8 +72,16 @@ def main() -> None:
         )
     )
     print(body)
-    print(f"wrote {write_report('impact_speed', 'Impact speed', 'make bench-impact', body)}")
+    # make bench-impact is exactly the defaults and --docs
+    command = (
+        "make bench-impact"
+        if args.docs and args.repeats == 3
+        else f"python bench/impact_speed.py --repeats {args.repeats}"
+        + (" --docs" if args.docs else "")
+    )
+    print(f"wrote {write_report('impact_speed', 'Impact speed', command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

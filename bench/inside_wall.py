@@ -12,25 +12,45 @@ the stop, reports what could have put a disk point inside the wall:
 - folds of the wall's surface (a segment running backwards in x), where the
   vertical-ray test of the contact style could misread a point in a dip;
 - how far the wall sags under the disk and how near the disk is to a held side.
+
+It prints its diagnosis and writes no page (--docs is refused).
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from common import bench_parser, refuse
 from matplotlib.path import Path as Polygon
 
 from analysis.dump import open_run
+from builder.checks import Range
 from builder.cli import wall_points, wall_spring
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.scene import DISK_INTERIOR, DISK_SURFACE, WALL_FIXED, SceneSpec, build_scene
+from builder.scene import (
+    ANGLE,
+    DISK_INTERIOR,
+    DISK_SURFACE,
+    N_WALL,
+    SEED,
+    WALL_FIXED,
+    WALL_FIXED_CHOICES,
+    WALL_KA,
+    SceneSpec,
+    build_scene,
+)
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
+from runner.options import DT, SPRINGS
 from runner.study import PRESETS
+
+FRAMES = Range(1, 1_000, integer=True)
 
 
 def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int) -> dict:
@@ -56,19 +76,56 @@ def diagnose(step: int, x: np.ndarray, types: np.ndarray, first: int, last: int)
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n-wall", type=wall_points, default=SceneSpec.n_wall)
-    parser.add_argument("--wall-ka", type=wall_spring, default=SceneSpec.wall_ka)
-    parser.add_argument("--wall-fixed", default=SceneSpec.wall_fixed)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--gamma", type=float, default=61.6996)
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--n-wall",
+        type=wall_points,
+        default=SceneSpec.n_wall,
+        help=f"points in the wall, {N_WALL.describe()}, or 'density' (default: {SceneSpec.n_wall})",
+    )
+    parser.add_argument(
+        "--wall-ka",
+        type=wall_spring,
+        default=SceneSpec.wall_ka,
+        help=f"the wall's spring constant, {WALL_KA.describe()}, or 'same-c' "
+        f"(default: {SceneSpec.wall_ka:g})",
+    )
+    parser.add_argument(
+        "--wall-fixed",
+        choices=WALL_FIXED_CHOICES,
+        default=SceneSpec.wall_fixed,
+        help=f"which wall points are held (default: {SceneSpec.wall_fixed})",
+    )
+    parser.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=61.6996,
+        help=f"incidence angle, {ANGLE.describe()} (default: 61.6996)",
+    )
     # the settings of docs/benchmarks/scene_readings.md, whose failures this explains
-    parser.add_argument("--dt", type=float, default=0.004, help="time step (default: 0.004)")
-    parser.add_argument("--springs", default="class2", help="bond style (default: class2)")
-    parser.add_argument("--frames", type=int, default=4, help="frames before the stop to report")
-    args = parser.parse_args()
+    parser.add_argument(
+        "--dt", type=DT, default=0.004, help=f"time step, {DT.describe()} (default: 0.004)"
+    )
+    parser.add_argument(
+        "--springs", choices=SPRINGS, default="class2", help="bond style (default: class2)"
+    )
+    parser.add_argument(
+        "--frames",
+        type=FRAMES,
+        default=4,
+        help=f"frames before the stop to report, {FRAMES.describe()} (default: 4)",
+    )
+    return parser
 
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    if args.docs:
+        return refuse(__file__, InputError("--docs: this script writes no page, it prints"))
     spec = SceneSpec(
         seed=args.seed,
         gamma_deg=args.gamma,
@@ -86,7 +143,7 @@ def main() -> None:
         try:
             run_scene(folder, type(options)(**run))
             print("the impact finished: nothing to diagnose")
-            return
+            return 0
         except LammpsError as error:
             print(f"stopped: {error}")
         universe = open_run(folder)
@@ -96,7 +153,8 @@ def main() -> None:
         for ts in universe.trajectory[-args.frames :]:
             x = universe.atoms.positions[order, :2].astype(float)
             print(diagnose(ts.data.get("step", ts.frame), x, types, first, last))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,7 +1,7 @@
 """A large-resolution disk on several ranks: domain decomposition at scale.
 
     python bench/large_disk.py [--n-disk 20000] [--ranks 1 2] [--time 1.6]
-                               [--no-decay-table] [--whole]
+                               [--no-decay-table] [--whole] [--docs]
 
 A disk of n_disk points (random lattice, 45 degrees, 0.1 c) on a wall at the
 same number density, run by lmp from the start of the approach into the
@@ -32,17 +32,25 @@ from __future__ import annotations
 import argparse
 import math
 import shutil
+import sys
 
-from common import ROOT, loop_seconds, markdown_table, write_report
+from common import RUNS, bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
 
 from analysis.series import read_energies
+from builder.checks import Range
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.scene import Scene, SceneSpec, build_scene
+from builder.scene import N_WALL, Scene, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import run_lmp
-from runner.options import RunOptions
+from runner.options import NPROCS, TMAX, RunOptions
 
 ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")
+# A large disk: from the study's 800 points up to the largest whose wall, at
+# the disk's number density, the builder takes (N_WALL over the default wall).
+LARGE_N_DISK = Range(
+    800, int(N_WALL.high * math.pi / (SceneSpec.wall_width * SceneSpec.wall_height)), integer=True
+)
 
 
 def run(
@@ -50,7 +58,7 @@ def run(
 ) -> dict:
     """Run the scene into the contact; steps/s, the energies at the end and the
     change of the total energy. ``deck`` overrides the scene's own settings."""
-    folder = ROOT / "runs" / "bench" / name
+    folder = RUNS / name
     shutil.rmtree(folder, ignore_errors=True)
     options = RunOptions(dt=dt, tmax=until, every=100)
     write_scene(scene, folder, options.springs)  # the data file's bond style is the deck's
@@ -75,11 +83,27 @@ def run(
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n-disk", type=int, default=20000)
-    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
-    parser.add_argument("--time", type=float, default=1.6, help="run to this time, R/c")
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--n-disk",
+        type=LARGE_N_DISK,
+        default=20000,
+        help=f"points in the disk, {LARGE_N_DISK.describe()} (default: 20000)",
+    )
+    parser.add_argument(
+        "--ranks",
+        type=NPROCS,
+        nargs="+",
+        default=[1, 2],
+        help=f"numbers of ranks, each {NPROCS.describe()} (default: 1 2)",
+    )
+    parser.add_argument(
+        "--time",
+        type=TMAX,
+        default=1.6,
+        help=f"run to this time, {TMAX.describe()} (default: 1.6, into the contact)",
+    )
     parser.add_argument(
         "--no-decay-table", action="store_true", help="leave out the runs at the study's decay rate"
     )
@@ -88,12 +112,20 @@ def main() -> None:
         action="store_true",
         help="also run the whole impact on the largest number of ranks",
     )
-    args = parser.parse_args()
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     scale = math.sqrt(800 / args.n_disk)
     dt, roughness, contact_a = RunOptions().dt * scale, 0.03 * scale, 300.0 / scale
-    scene = build_scene(
-        SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness, contact_a=contact_a)
-    )
+    spec = SceneSpec(gamma_deg=45.0, n_disk=args.n_disk, roughness=roughness, contact_a=contact_a)
+    try:
+        distinct("--ranks", args.ranks)
+        spec.validate()
+    except InputError as error:
+        return refuse(__file__, error)
+    scene = build_scene(spec)
     cutoff = scene.info["contact"]["cutoff"]
 
     rows, reference = [], None
@@ -141,7 +173,7 @@ def main() -> None:
 
     if args.whole:
         ranks = max(args.ranks)
-        folder = ROOT / "runs" / "bench" / f"large_{args.n_disk}_whole"
+        folder = RUNS / f"large_{args.n_disk}_whole"
         shutil.rmtree(folder, ignore_errors=True)
         options = RunOptions(dt=dt, nprocs=ranks, every=100)
         write_scene(scene, folder, options.springs)
@@ -190,10 +222,13 @@ def main() -> None:
         f"python bench/large_disk.py --n-disk {args.n_disk} --time {args.time} --ranks "
         + " ".join(map(str, args.ranks))
         + flags
+        + (" --docs" if args.docs else "")
     )
     print(body)
-    print(write_report("large_disk", "A large-resolution disk on several ranks", command, body))
+    title = "A large-resolution disk on several ranks"
+    print(f"wrote {write_report('large_disk', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,7 +1,7 @@
 """Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
 
     python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
-                                  [--respa 0.004/2 0.01/5] [--before f233bf1]
+                                  [--respa 0.004/2 0.01/5] [--before f233bf1] [--docs]
 
 On one scene of the default reading (MODEL.md section 8; random disk), the
 same time of the impact (the S steps it takes at the default dt) for:
@@ -28,13 +28,18 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
+import re
+import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 from common import (
     BENCH_DECK,
+    REPEATS,
     ROOT,
+    bench_parser,
     file_at,
     loop_seconds,
     markdown_table,
@@ -44,9 +49,10 @@ from common import (
 )
 
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import ANGLE, SEED, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import command_line
+from runner.options import DT, NRESPA
 from runner.study import PRESETS
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
@@ -132,21 +138,73 @@ def variants(
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=5, help="runs of every variant (default: 5)")
-    parser.add_argument("--gamma", type=float, default=30.0, help="incidence angle (default: 30)")
-    parser.add_argument("--seed", type=int, default=1, help="sample seed (default: 1)")
+def respa_split(text: str) -> tuple[float, int]:
+    """--respa: OUTER/N, rRESPA's outer step (a dt) and contact steps per step (an nrespa)."""
+    outer, slash, n = text.partition("/")
+    if not slash:
+        raise argparse.ArgumentTypeError(f"must be OUTER/N, got {text!r}")
+    try:
+        return DT(outer), NRESPA(n)
+    except argparse.ArgumentTypeError as error:
+        raise argparse.ArgumentTypeError(
+            f"must be OUTER/N, OUTER {DT.describe()}, N {NRESPA.describe()}: {text!r} ({error})"
+        ) from None
+
+
+respa_split.__name__ = "OUTER/N"
+respa_split.bad_values = ("", "0.004", "0.004/0", "nan/2", "0.004/x", "1/2")  # test_bad_input
+
+
+def commit_name(text: str) -> str:
+    """--before: a commit of this repository (git rev-parse resolves it)."""
+    # the characters of a ref or revision, and no leading "-" that git would read as an option
+    plausible = re.fullmatch(r"[\w./~^@{}-]+", text) and not text.startswith("-")
+    verify = ["git", "rev-parse", "--verify", "--quiet", f"{text}^{{commit}}"]
+    if not plausible or subprocess.run(verify, cwd=ROOT, capture_output=True).returncode:
+        raise argparse.ArgumentTypeError(f"must name a commit of this repository, got {text!r}")
+    return text
+
+
+commit_name.__name__ = "commit"
+commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/test_bad_input.py
+
+
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=5,
+        help=f"runs of every variant, {REPEATS.describe()} (default: 5)",
+    )
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=30.0,
+        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
+    )
+    parser.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
     parser.add_argument(
         "--respa",
+        type=respa_split,
         nargs="*",
-        default=["0.004/2", "0.01/5"],
-        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N",
+        default=["0.004/2", "0.01/5"],  # texts, so that argparse checks them
+        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N "
+        f"(OUTER {DT.describe()}, N {NRESPA.describe()}; default: 0.004/2 0.01/5)",
     )
     parser.add_argument(
-        "--before", default="f233bf1", help="the commit whose setup.lmp the (b) variant runs"
+        "--before",
+        type=commit_name,
+        default="f233bf1",
+        help="the commit whose decks/setup.lmp the second (b) variant runs (default: f233bf1)",
     )
-    args = parser.parse_args()
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
 
     spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
     scene = build_scene(spec)
@@ -156,8 +214,7 @@ def main() -> None:
         steps = run_scene(folder, PRESETS["paper"].options)["steps"]
         old_setup = Path(tmp) / "setup_before.lmp"
         old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
-        splits = [(float(dt), int(n)) for dt, n in (split.split("/") for split in args.respa)]
-        chosen = variants(folder, steps, splits, old_setup, args.before)
+        chosen = variants(folder, steps, args.respa, old_setup, args.before)
         runs: dict[str, list[dict]] = {}
         for repeat in range(args.repeats):
             for name, (deck, variables) in chosen.items():
@@ -227,11 +284,15 @@ def main() -> None:
     )
     print(body)
     command = (
-        f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g} "
-        f"--respa {' '.join(args.respa)} --before {args.before}"
+        f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
+        + (f" --seed {args.seed}" if args.seed != 1 else "")
+        + f" --respa {' '.join(f'{dt:g}/{n}' for dt, n in args.respa)}"
+        + f" --before {args.before}"
+        + (" --docs" if args.docs else "")
     )
-    print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body)}")
+    print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

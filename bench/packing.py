@@ -1,6 +1,6 @@
 """Does packing several scenes side by side into one LAMMPS run pay?
 
-    python bench/packing.py [--repeats 3] [--steps 3000]
+    python bench/packing.py [--repeats 3] [--steps 3000] [--docs]
 
 The issue's lead for the study's throughput: K copies of one scene in one run
 (LAMMPS's replicate) against K separate runs. Each configuration runs the
@@ -19,10 +19,21 @@ from __future__ import annotations
 
 import argparse
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
-from common import BENCH_DECK, ROOT, markdown_table, median, timer_seconds, write_report
+from common import (
+    BENCH_DECK,
+    REPEATS,
+    ROOT,
+    TIMED_STEPS,
+    bench_parser,
+    markdown_table,
+    median,
+    timer_seconds,
+    write_report,
+)
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -64,11 +75,25 @@ def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) 
     return {"rate": rate, **shares}
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--steps", type=int, default=3000)
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=3,
+        help=f"interleaved repeats of every way, {REPEATS.describe()} (default: 3)",
+    )
+    parser.add_argument(
+        "--steps",
+        type=TIMED_STEPS,
+        default=3000,
+        help=f"steps of each run, {TIMED_STEPS.describe()} (default: 3000)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
 
     ways = [
         ("1 scene, 1 rank", 1, 1, 1),
@@ -113,9 +138,13 @@ def main() -> None:
         )
     )
     print(body)
-    command = f"python bench/packing.py --repeats {args.repeats} --steps {args.steps}"
-    print(f"wrote {write_report('packing', 'Packing scenes into one run', command, body)}")
+    command = f"python bench/packing.py --repeats {args.repeats} --steps {args.steps}" + (
+        " --docs" if args.docs else ""
+    )
+    title = "Packing scenes into one run"
+    print(f"wrote {write_report('packing', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,6 +1,6 @@
 """Is the surface roughness still MODEL.md's, now that every seed builds?
 
-    python bench/roughness.py [--seeds 100] [--first-seed 1] [--write]
+    python bench/roughness.py [--seeds 100] [--first-seed 1] [--write [--docs]]
 
 Builds the disk of every lattice of the study (runner/study.py LATTICES) and
 the wall of every reading (800, 1,600 points, the disk's number density;
@@ -18,21 +18,22 @@ of builder.scene._sample_seeds), and reports per body and reading:
   the flipped segments in units of their std sqrt(2) delta: these are the
   tails a redraw of the offending displacements would have cut.
 
-``--write`` puts the table in docs/benchmarks/roughness.md. 100 seeds take
-about 10 minutes on one core.
+``--write`` puts the table in runs/bench/roughness.md, with ``--docs`` in
+docs/benchmarks/roughness.md. 100 seeds take about 10 minutes on one core.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import numpy as np
-from common import markdown_table, write_report
+from common import SEED_COUNT, bench_parser, markdown_table, refuse, write_report
 
 from builder import bodies
-from builder.errors import BuildError
-from builder.scene import _sample_seeds
+from builder.errors import BuildError, InputError
+from builder.scene import SEED, _sample_seeds
 from runner.study import LATTICES
 
 DELTA = 0.03
@@ -154,16 +155,39 @@ def table(records: list[dict]) -> str:
     return markdown_table(header, rows)
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(
-        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
-    )
-    parser.add_argument("--seeds", type=int, default=100, help="number of seeds (default 100)")
-    parser.add_argument("--first-seed", type=int, default=1, help="first seed (default 1)")
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
     parser.add_argument(
-        "--write", action="store_true", help="write the table to docs/benchmarks/roughness.md"
+        "--seeds",
+        type=SEED_COUNT,
+        default=100,
+        help=f"number of seeds, {SEED_COUNT.describe()} (default: 100)",
     )
-    args = parser.parse_args()
+    parser.add_argument(
+        "--first-seed",
+        type=SEED,
+        default=1,
+        help=f"first seed, {SEED.describe()} (default: 1)",
+    )
+    parser.add_argument(
+        "--write",
+        action="store_true",
+        help="write the page: runs/bench/roughness.md, with --docs the committed one",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        if args.docs and not args.write:
+            raise InputError("--docs applies with --write only (without it nothing is written)")
+        if args.first_seed + args.seeds - 1 > SEED.high:
+            raise InputError(
+                f"--first-seed + --seeds - 1 must be at most {SEED.high}, the largest seed"
+            )
+    except InputError as error:
+        return refuse(__file__, error)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     start = time.time()
     records = survey(seeds)
@@ -181,12 +205,14 @@ def main() -> None:
             + (f" --seeds {args.seeds}" if args.seeds != 100 else "")
             + (f" --first-seed {args.first_seed}" if args.first_seed != 1 else "")
             + " --write"
+            + (" --docs" if args.docs else "")
         )
         path = write_report(
-            "roughness", "Surface roughness and the steep-segment fix", command, body
+            "roughness", "Surface roughness and the steep-segment fix", command, body, args.docs
         )
         print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

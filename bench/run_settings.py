@@ -1,6 +1,6 @@
 """What the run's settings cost: stopping early, output, neighbour lists.
 
-    python bench/run_settings.py [--repeats 3]
+    python bench/run_settings.py [--repeats 3] [--docs]
 
 The default scene (random lattice, 45 degrees) at the default time step, each
 setting changed alone, interleaved and repeated; medians of the wall time
@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import tempfile
 from pathlib import Path
 
-from common import loop_seconds, markdown_table, median, write_report
+from common import REPEATS, bench_parser, loop_seconds, markdown_table, median, write_report
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -52,10 +53,19 @@ def run(folder: Path, changes: dict[str, str]) -> dict:
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=3,
+        help=f"runs of each setting, {REPEATS.describe()} (default: 3)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     scene = build_scene(SceneSpec(gamma_deg=45.0))
     times = {name: [] for name in SETTINGS}
     with tempfile.TemporaryDirectory() as tmp:
@@ -84,9 +94,15 @@ def main() -> None:
         + markdown_table(["setting", "steps", "s per impact", "% vs defaults", "e", "beta"], rows)
     )
     print(body)
-    path = write_report("run_settings", "Run settings", "python bench/run_settings.py", body)
+    command = (
+        "python bench/run_settings.py"
+        + (f" --repeats {args.repeats}" if args.repeats != 3 else "")
+        + (" --docs" if args.docs else "")
+    )
+    path = write_report("run_settings", "Run settings", command, body, args.docs)
     print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,24 +1,28 @@
 """Stability stress tests: where runs fail, what the user sees, long runs.
 
-    python bench/stability.py
+    python bench/stability.py [--docs]        (make bench-study: with --docs)
 
 1. Time-step sweeps, velocity Verlet and rRESPA (the contact alone on the
    inner level at dt / RESPA_NRESPA; dt its outer step), until the run fails: rough
    random and square disks at the most grazing angle of the study (80.5
    degrees) at 0.1 c, and at 45 degrees at 0.1, 0.2, 0.3 and 0.5 c.
-2. A long run after the impact (to t = 400 R/c, the conservative "gradient"
+2. The speeds at which the contact is resolved at the default integrator and
+   step: normal speeds 0.05 to 0.5 c at four angles, three seeds each; the
+   range of --vn (builder/cli.py) is taken from it.
+3. A long run after the impact (to t = 400 R/c, the conservative "gradient"
    rule): the total energy's drift, and whether the disk's springs are intact.
-Writes docs/benchmarks/stability.md.
+Writes runs/bench/stability.md, or with --docs docs/benchmarks/stability.md.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-from common import markdown_table, write_report
+from common import bench_parser, markdown_table, write_report
 
 from analysis.series import read_energies
 from builder.lammps_data import write_scene
@@ -82,6 +86,42 @@ def sweep(tmp: Path) -> list[list[str]]:
     return rows
 
 
+SPEEDS = (0.05, 0.1, 0.2, 0.3, 0.4, 0.5)
+SPEED_ANGLES = (5.7106, 45.0, 63.52, 80.5)
+SPEED_SEEDS = (1, 2, 3)
+
+
+def speed_limits(tmp: Path) -> list[list[str]]:
+    """Which (angle, v_n) the default run resolves: every seed finishes with
+    its drift below the guard."""
+    rows = []
+    options = RunOptions()
+    for gamma in SPEED_ANGLES:
+        for vn in SPEEDS:
+            drifts, failures = [], []
+            for seed in SPEED_SEEDS:
+                spec = SceneSpec(gamma_deg=gamma, vn=vn, seed=seed)
+                folder = write_scene(build_scene(spec), tmp / f"speed_{gamma}_{vn}_{seed}")
+                try:
+                    drifts.append(abs(run_scene(folder, options)["energy_drift"]))
+                except LammpsError as error:
+                    failures.append(str(error).replace("ERROR on proc 0: ", "")[:70])
+            flagged = sum(d > options.max_drift for d in drifts)
+            rows.append(
+                [
+                    f"{gamma:g}",
+                    f"{vn:g}",
+                    f"{vn * np.tan(np.radians(gamma)):.2f}",
+                    f"{len(drifts)} of {len(SPEED_SEEDS)}",
+                    f"{max(drifts):.1e}" if drifts else "-",
+                    str(flagged),
+                    failures[0] if failures else "",
+                ]
+            )
+            print(" | ".join(rows[-1]), flush=True)
+    return rows
+
+
 def spring_strain(folder: Path) -> float:
     """Largest relative stretch of a disk spring in the last dump frame."""
     system = read_data(folder / "scene.data")
@@ -112,33 +152,83 @@ def long_run(tmp: Path, dt: float) -> list[str]:
     return [f"{dt:g}", "400", f"{drift:+.1e}", f"{spring_strain(folder):.3f}"]
 
 
-def main() -> None:
-    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()
+PARTS = ("steps", "speeds", "long")
+
+
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--parts",
+        nargs="+",
+        choices=PARTS,
+        default=list(PARTS),
+        help="which tests to run (default: all); each writes its own section, and a "
+        "page of only some is named after them (stability_speeds.md, ...)",
+    )
+    return parser
+
+
+SPEED_HEADER = [
+    "gamma, deg",
+    "v_n, c",
+    "v_n tan gamma, c",
+    "finished",
+    "largest |drift|",
+    "drift above --max-drift",
+    "a failure",
+]
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    parts = [p for p in PARTS if p in args.parts]
+    sections = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        sweep_rows = sweep(tmp)
-        long_rows = [long_run(tmp, dt) for dt in (RunOptions().dt,)]
-    body = (
-        "## Time steps until failure\n\n"
-        + markdown_table(
-            ["scene", "integrator", "largest time step that ran", "first failure"], sweep_rows
-        )
-        + "\n\n## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
-        "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
-        + markdown_table(
-            [
-                "dt",
-                "t end",
-                "total energy change / initial kinetic energy",
-                "largest strain of a disk spring at the end",
-            ],
-            long_rows,
-        )
-    )
+        if "steps" in parts:
+            sections.append(
+                "## Time steps until failure\n\n"
+                + markdown_table(
+                    ["scene", "integrator", "largest time step that ran", "first failure"],
+                    sweep(tmp),
+                )
+            )
+        if "speeds" in parts:
+            seeds = ", ".join(map(str, SPEED_SEEDS))
+            sections.append(
+                "## Speeds at which the contact is resolved\n\n"
+                f"Random disk on the default scene at the default run settings (dt "
+                f"{RunOptions().dt:g}), seeds {seeds}. `--vn` takes (0, 0.3] and a run whose "
+                "speed along the wall, v_n tan gamma, exceeds 0.6 c is warned of "
+                "(builder/scene.py's VN and MAX_TANGENTIAL_SPEED): every run below both "
+                "finished.\n\n" + markdown_table(SPEED_HEADER, speed_limits(tmp))
+            )
+        if "long" in parts:
+            sections.append(
+                "## A long run after the impact\n\nRandom disk at 80.5 degrees and 0.1 c, "
+                "conservative rule, run on to t = 400 R/c after it has left the wall.\n\n"
+                + markdown_table(
+                    [
+                        "dt",
+                        "t end",
+                        "total energy change / initial kinetic energy",
+                        "largest strain of a disk spring at the end",
+                    ],
+                    [long_run(tmp, dt) for dt in (RunOptions().dt,)],
+                )
+            )
+    body = "\n\n".join(sections)
     print(body)
-    path = write_report("stability", "Stability stress tests", "python bench/stability.py", body)
+    name = "stability" if parts == list(PARTS) else "stability_" + "_".join(parts)
+    command = (
+        "python bench/stability.py"
+        + ("" if parts == list(PARTS) else " --parts " + " ".join(parts))
+        + (" --docs" if args.docs else "")
+    )
+    path = write_report(name, "Stability stress tests", command, body, args.docs)
     print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

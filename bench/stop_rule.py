@@ -1,25 +1,30 @@
 """The predictive stop rule against runs that go on long after it would stop.
 
-    python bench/stop_rule.py [--seeds 3]
+    python bench/stop_rule.py [--seeds 3] [--slack R] [--vibration 1] [--name stop_rule]
+                              [--docs]
 
 Every lattice of the study at angles from 5.7 to 80.5 degrees, several seeds.
 Each impact runs twice: stopped by the predictive rule, and continued to
 t = 100 R/c. A contact in the long run after the predictive stop is a missed
 re-contact; the table counts them and how much they change e and beta, and
-the steps each way. Writes docs/benchmarks/<--name>.md; the committed tables
-are `--vibration 1 --name stop_rule_vibration` and `--vibration 0 --slack
-0.0337 --name stop_rule_fixed_margin`.
+the steps each way. Writes runs/bench/<--name>.md, with --docs
+docs/benchmarks/<--name>.md; the committed tables are `--vibration 1 --name
+stop_rule_vibration --docs` and `--vibration 0 --slack 0.0337 --name
+stop_rule_fixed_margin --docs`.
 """
 
 from __future__ import annotations
 
 import argparse
+import re
+import sys
 import tempfile
 from pathlib import Path
 
-from common import markdown_table, median, write_report
+from common import SEED_COUNT, bench_parser, markdown_table, median, write_report
 
 from analysis.series import read_series
+from builder.checks import Range
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene
@@ -34,6 +39,25 @@ LATTICES = {
 }
 ANGLES = (5.7, 26.6, 45.0, 63.4, 80.5)
 LONG = 100.0
+# decks/impact.lmp's stop_slack (a margin in R; its default is 0.1 cutoff,
+# 0.0067 R on the default wall) and stop_vibration (the weight of the
+# vibration amplitudes in the margin: 0 leaves them out, 1 counts them)
+SLACK = Range(0.0, 1.0, unit="R")
+VIBRATION = Range(0.0, 10.0)
+
+
+def page_name(text: str) -> str:
+    """--name: a page of this benchmark, stop_rule or stop_rule_<word>, so that
+    it cannot overwrite another benchmark's page."""
+    if not re.fullmatch(r"stop_rule(_[A-Za-z0-9_-]+)?", text):
+        raise argparse.ArgumentTypeError(
+            f"must be stop_rule or stop_rule_<letters, digits, _ or ->, got {text!r}"
+        )
+    return text
+
+
+page_name.__name__ = "name"
+page_name.bad_values = ("", "other", "stop_rule_", "stop_rule/x", "../stop_rule")
 
 
 def long_run(folder: Path) -> dict:
@@ -41,15 +65,38 @@ def long_run(folder: Path) -> dict:
     return run_scene(folder, RunOptions(tmax=LONG), {"early_stop": "no"})
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=3)
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
     parser.add_argument(
-        "--slack", type=float, default=None, help="stop_slack, R (deck default: 0.1 cutoff)"
+        "--seeds",
+        type=SEED_COUNT,
+        default=3,
+        help=f"seeds 1 to N, {SEED_COUNT.describe()} (default: 3)",
     )
-    parser.add_argument("--vibration", type=float, default=1.0, help="stop_vibration (0 or 1)")
-    parser.add_argument("--name", default="stop_rule")
-    args = parser.parse_args()
+    parser.add_argument(
+        "--slack",
+        type=SLACK,
+        default=None,
+        help=f"stop_slack, {SLACK.describe()} (default: the deck's, 0.1 cutoff)",
+    )
+    parser.add_argument(
+        "--vibration",
+        type=VIBRATION,
+        default=1.0,
+        help=f"stop_vibration, {VIBRATION.describe()}: 0 leaves the vibration amplitudes "
+        "out of the margin, 1 counts them (default: 1)",
+    )
+    parser.add_argument(
+        "--name",
+        type=page_name,
+        default="stop_rule",
+        help="the page's name, stop_rule or stop_rule_<word> (default: stop_rule)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     extra_vars = {"stop_vibration": repr(args.vibration)}
     if args.slack is not None:
         extra_vars["stop_slack"] = repr(args.slack)
@@ -115,10 +162,13 @@ def main() -> None:
     command = (
         f"python bench/stop_rule.py --vibration {args.vibration:g}"
         + (f" --slack {args.slack:g}" if args.slack is not None else "")
+        + (f" --seeds {args.seeds}" if args.seeds != 3 else "")
         + f" --name {args.name}"
+        + (" --docs" if args.docs else "")
     )
-    print(f"wrote {write_report(args.name, 'Stop rule', command, body)}")
+    print(f"wrote {write_report(args.name, 'Stop rule', command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

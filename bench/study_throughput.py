@@ -1,6 +1,6 @@
 """Impacts per minute of the study: worker processes against LAMMPS partitions.
 
-    python bench/study_throughput.py [--samples 1] [--angles 8] [--repeats 2]
+    python bench/study_throughput.py [--samples 1] [--angles 8] [--repeats 2] [--docs]
 
 A small study with every lattice of the paper (lattices x angles x samples
 impacts, 800-point disks, the default settings), run in fresh folders by each
@@ -19,7 +19,9 @@ import subprocess
 import sys
 import time
 
-from common import ROOT, markdown_table, median, write_report
+from common import REPEATS, ROOT, bench_parser, markdown_table, median, write_report
+
+from runner.study import ANGLES, SAMPLES, runs_folder
 
 WAYS = {
     "2 workers (lammps module)": ["--workers", "2"],
@@ -30,7 +32,7 @@ PAPER_IMPACTS = 6400
 
 
 def run(name: str, extra: list[str], samples: int, angles: int) -> tuple[float, int]:
-    shutil.rmtree(ROOT / "runs" / name, ignore_errors=True)
+    shutil.rmtree(runs_folder() / name, ignore_errors=True)
     command = [
         sys.executable,
         "-m",
@@ -50,16 +52,32 @@ def run(name: str, extra: list[str], samples: int, angles: int) -> tuple[float, 
     if proc.returncode not in (0, 1):  # 1: some impacts failed, which the count shows
         raise subprocess.CalledProcessError(proc.returncode, command, proc.stdout, proc.stderr)
     seconds = time.monotonic() - start
-    impacts = len(list((ROOT / "runs" / name).glob("*/*/*/result.json")))
+    impacts = len(list((runs_folder() / name).glob("*/*/*/result.json")))
     return seconds, impacts
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=1)
-    parser.add_argument("--angles", type=int, default=8)
-    parser.add_argument("--repeats", type=int, default=2)
-    args = parser.parse_args()
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--samples",
+        type=SAMPLES,
+        default=1,
+        help=f"samples per angle and lattice, {SAMPLES.describe()} (default: 1)",
+    )
+    parser.add_argument(
+        "--angles", type=ANGLES, default=8, help=f"angles, {ANGLES.describe()} (default: 8)"
+    )
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=2,
+        help=f"runs of every way, {REPEATS.describe()} (default: 2)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     times: dict[str, list[float]] = {way: [] for way in WAYS}
     counts: dict[str, int] = {}
     for _ in range(args.repeats):
@@ -87,12 +105,15 @@ def main() -> None:
             ["way", "impacts", "s", "impacts per minute", "paper (6,400 impacts)"], rows
         )
     )
-    command = "python bench/study_throughput.py" + "".join(
-        f" --{k} {v}" for k, v in vars(args).items()
+    command = (
+        f"python bench/study_throughput.py --samples {args.samples} --angles {args.angles} "
+        f"--repeats {args.repeats}" + (" --docs" if args.docs else "")
     )
     print(body)
-    print(write_report("study_throughput", "Study throughput", command, body))
+    title = "Study throughput"
+    print(f"wrote {write_report('study_throughput', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,6 +1,7 @@
 """Does the wall's width change grazing impacts? The 8 R wall against a wider one.
 
     python bench/wall_width.py [--seeds 12] [--widths 8 16] [--angles 63.52 73.9 80.5]
+                               [--workers 2] [--docs]
 
 At grazing angles the disk slides several R during contact, and on MODEL.md's
 8 R wall its centre can pass an end of the wall, where the wall is held
@@ -16,18 +17,20 @@ the disk's radius), or past it (< 0).
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
-from common import markdown_table, write_report
+from common import SEED_COUNT, bench_parser, distinct, markdown_table, refuse, write_report
 
-from builder.errors import BuildError
-from builder.scene import SceneSpec
+from builder.errors import BuildError, InputError
+from builder.scene import ANGLE, WALL_WIDTH, SceneSpec
 from runner.impact import run_impact
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
+from runner.study import WORKERS
 
 
 def one_impact(args: tuple[float, float, int, str]) -> dict:
@@ -50,14 +53,48 @@ def mean_se(values: list[float]) -> str:
     return f"{a.mean():.3f} +- {a.std(ddof=1) / np.sqrt(len(a)):.3f}" if len(a) > 1 else "-"
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=12)
-    parser.add_argument("--widths", type=float, nargs="+", default=[8.0, 16.0])
-    parser.add_argument("--angles", type=float, nargs="+", default=[63.52, 73.9, 80.5])
-    parser.add_argument("--workers", type=int, default=2)
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--seeds",
+        type=SEED_COUNT,
+        default=12,
+        help=f"seeds 1 to N, {SEED_COUNT.describe()} (default: 12)",
+    )
+    parser.add_argument(
+        "--widths",
+        type=WALL_WIDTH,
+        nargs="+",
+        default=[8.0, 16.0],
+        help=f"wall widths, each {WALL_WIDTH.describe()} (default: 8 16)",
+    )
+    parser.add_argument(
+        "--angles",
+        type=ANGLE,
+        nargs="+",
+        default=[63.52, 73.9, 80.5],
+        help=f"incidence angles, each {ANGLE.describe()} (default: 63.52 73.9 80.5)",
+    )
+    parser.add_argument(
+        "--workers",
+        type=WORKERS,
+        default=2,
+        help=f"worker processes, {WORKERS.describe()} (default: 2)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        distinct("--widths", args.widths)
+        distinct("--angles", args.angles)
+        for width in args.widths:  # the scenes' own checks, before any impact
+            for gamma in args.angles:
+                SceneSpec(gamma_deg=gamma, wall_width=width).validate()
+    except InputError as error:
+        return refuse(__file__, error)
     # an impact that fails (a LAMMPS error, or a wall the builder refuses) is counted, not fatal
-    args = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as tmp:
         tasks = [
@@ -115,9 +152,13 @@ def main() -> None:
         + " ".join(f"{w:g}" for w in args.widths)
         + " --angles "
         + " ".join(f"{g:g}" for g in args.angles)
+        + (f" --workers {args.workers}" if args.workers != 2 else "")
+        + (" --docs" if args.docs else "")
     )
-    print(f"wrote {write_report('wall_width', 'Wall width at grazing angles', command, body)}")
+    title = "Wall width at grazing angles"
+    print(f"wrote {write_report('wall_width', title, command, body, args.docs)}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

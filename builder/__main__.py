@@ -5,14 +5,22 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .cli import OneLineParser, add_scene_arguments, count, positive_float, spec_from_args
+from .checks import OutFolder, Range
+from .cli import OneLineParser, add_scene_arguments, spec_from_args, validate_spec
 from .contact_table import POINTS, table_name, table_text
 from .errors import BuildError, InputError
 from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES, write_scene
 from .scene import build_scene
 
+# The table's numbers: a contact whose force has not died out at the table's
+# outer end, or has underflowed at its inner one, is not the model's.
+TABLE_A = Range(1.0, 10_000.0, unit="per R")
+TABLE_V0 = Range(0.0, 1e8, low_open=True, unit="energy, m c^2")
+TABLE_POINTS = Range(100, 10_000_000, integer=True)
 
-def main(argv: list[str] | None = None) -> int:
+
+def parser() -> OneLineParser:
+    """python -m builder's options."""
     parser = OneLineParser(
         prog="python -m builder", description="Build lattices and write LAMMPS data files."
     )
@@ -33,26 +41,44 @@ def main(argv: list[str] | None = None) -> int:
         "project's own style; default), class2 (the same springs, LAMMPS's "
         "built-in style) or harmonic (no quartic)",
     )
-    scene.add_argument("--out", required=True, help="folder to write into")
+    scene.add_argument(
+        "--out", type=OutFolder(), required=True, help="folder to write into (created if missing)"
+    )
 
     table = commands.add_parser(
         "table",
         help="write the pair-variant contact table",
         description="Tabulate E = V0 exp(-a r) for pair_style table.",
     )
-    table.add_argument("--a", type=positive_float, default=300.0, help="decay rate (default: 300)")
     table.add_argument(
-        "--v0", type=positive_float, default=150.0, help="energy scale (default: 150)"
+        "--a", type=TABLE_A, default=300.0, help=f"decay rate, {TABLE_A.describe()} (default: 300)"
     )
     table.add_argument(
-        "--points", type=count(100), default=POINTS, help=f"points in the table (default: {POINTS})"
+        "--v0",
+        type=TABLE_V0,
+        default=150.0,
+        help=f"energy scale, {TABLE_V0.describe()} (default: 150)",
     )
-    table.add_argument("--out", required=True, help="folder to write into")
+    table.add_argument(
+        "--points",
+        type=TABLE_POINTS,
+        default=POINTS,
+        help=f"points in the table, {TABLE_POINTS.describe()} (default: {POINTS})",
+    )
+    table.add_argument(
+        "--out", type=OutFolder(), required=True, help="folder to write into (created if missing)"
+    )
 
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     try:
         if args.command == "scene":
-            folder = write_scene(build_scene(spec_from_args(args)), args.out, args.springs)
+            spec = spec_from_args(args)
+            validate_spec(spec)  # every value checked before anything is built or written
+            folder = write_scene(build_scene(spec), args.out, args.springs)
             print(f"wrote {folder}/scene.data, scene.lmp, scene.json")
         else:
             path = Path(args.out) / table_name(args.a, args.v0)

@@ -1,8 +1,29 @@
-"""argparse types that reject bad values with a message naming the allowed range."""
+"""The scene's command-line options, shared by the builder, the runner and the study.
+
+Every value goes through builder.checks: a number outside its range, a
+non-finite one or an unknown choice is refused with one line that names the
+option and what it may be, exit status 2, before anything is written.
+"""
 
 from __future__ import annotations
 
 import argparse
+
+from .errors import InputError
+from .scene import (
+    ANGLE,
+    CONTACT_A,
+    K2_OVER_K1,
+    N_DISK,
+    N_WALL,
+    NU,
+    RADIUS,
+    ROUGHNESS,
+    SEED,
+    VN,
+    WALL_KA,
+    WALL_WIDTH,
+)
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -12,69 +33,33 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def angle(text: str) -> float:
-    value = float(text)
-    if not 0.0 < value < 90.0:
-        raise argparse.ArgumentTypeError(f"must be in (0, 90) degrees, got {text}")
-    return value
-
-
-def positive_float(text: str) -> float:
-    value = float(text)
-    if not value > 0.0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
-    return value
-
-
-def count(minimum: int):
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"must be an integer >= {minimum}, got {text}"
-            ) from None
-        if value < minimum:
-            raise argparse.ArgumentTypeError(f"must be an integer >= {minimum}, got {text}")
-        return value
-
-    return parse
-
-
-def speed(text: str) -> float:
-    value = float(text)
-    if not 0.0 < value < 1.0:
-        raise argparse.ArgumentTypeError(f"must be in (0, 1) (units of c), got {text}")
-    return value
-
-
 def wall_points(text: str) -> int | str:
-    """--n-wall: a number of points >= 50, or "density" (the disk's number density)."""
+    """--n-wall: a number of points, or "density" (the disk's number density)."""
     if text == "density":
         return text
     try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 50:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 50 or 'density', got {text}")
-    return value
+        return N_WALL(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"must be {N_WALL.describe()} or 'density', got {text}"
+        ) from None
 
 
 def wall_spring(text: str) -> float | str:
-    """--wall-ka: the wall's ka over the disk's, in [0.01, 1000], or "same-c"."""
+    """--wall-ka: the wall's ka over the random disk's, or "same-c"."""
     if text == "same-c":
         return text
     try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not 0.01 <= value <= 1000.0:
+        return WALL_KA(text)
+    except argparse.ArgumentTypeError:
         raise argparse.ArgumentTypeError(
-            f"must be a number in [0.01, 1000] (the wall's ka over the disk's) or 'same-c', "
-            f"got {text}"
-        )
-    return value
+            f"must be {WALL_KA.describe()} or 'same-c', got {text}"
+        ) from None
+
+
+wall_points.__name__ = wall_spring.__name__ = "reading"
+# what each takes besides its word (tests/test_bad_input.py feeds it bad numbers)
+wall_points.numbers, wall_spring.numbers = N_WALL, WALL_KA
 
 
 def add_wall_arguments(group, defaults: bool = True) -> None:
@@ -86,15 +71,16 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
         "--n-wall",
         type=wall_points,
         default=spec.n_wall if defaults else None,
-        help=f"points in the wall, >= 50, or 'density': the disk's number "
+        help=f"points in the wall, {N_WALL.describe()}, or 'density': the disk's number "
         f"density (default: {spec.n_wall})",
     )
     group.add_argument(
         "--wall-ka",
         type=wall_spring,
         default=spec.wall_ka if defaults else None,
-        help=f"the wall's spring constant over the disk's, in [0.01, 1000], or "
-        f"'same-c': the wall's springs give it the disk's wave speed "
+        help=f"the wall's spring constant in units of the random disk's ka (that of a random "
+        f"lattice at the disk's number density with wave speed c), the same for every disk "
+        f"lattice, {WALL_KA.describe()}, or 'same-c': the wall's springs give it the wave speed c "
         f"(default: {spec.wall_ka:g})",
     )
     group.add_argument(
@@ -102,6 +88,13 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
         choices=WALL_FIXED_CHOICES,
         default=spec.wall_fixed if defaults else None,
         help=f"which wall points are held fixed (default: {spec.wall_fixed})",
+    )
+    group.add_argument(
+        "--wall-width",
+        type=WALL_WIDTH,
+        default=spec.wall_width if defaults else None,
+        help=f"the wall's width, {WALL_WIDTH.describe()} (default: {spec.wall_width:g}, "
+        "docs/model.md section 1; on grazing angles, its choices as built)",
     )
 
 
@@ -116,63 +109,106 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         default="random",
         help="disk lattice (default: random); the wall is always random",
     )
-    group.add_argument("--seed", type=count(0), default=1, help="sample seed (default: 1)")
+    group.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
     group.add_argument(
         "--gamma",
-        type=angle,
+        type=ANGLE,
         default=45.0,
-        help="incidence angle from the wall normal, degrees, in (0, 90) (default: 45)",
+        help=f"incidence angle, {ANGLE.describe()} (default: 45)",
     )
     group.add_argument(
         "--vn",
-        type=speed,
+        type=VN,
         default=0.1,
-        help="normal approach speed in units of c, in (0, 1) (default: 0.1)",
+        help=f"normal approach speed, {VN.describe()}: where the default run resolves "
+        "the contact (docs/benchmarks/stability_speeds.md) (default: 0.1)",
     )
     group.add_argument(
         "--radius",
-        type=positive_float,
+        type=RADIUS,
         default=1.0,
-        help="disk radius R, the unit of length (default: 1)",
+        help=f"disk radius, {RADIUS.describe()} (default: 1)",
     )
     group.add_argument(
-        "--n-disk", type=count(50), default=800, help="points in the disk, >= 50 (default: 800)"
+        "--n-disk",
+        type=N_DISK,
+        default=800,
+        help=f"points in the disk, {N_DISK.describe()} (default: 800)",
     )
     group.add_argument(
         "--roughness",
-        type=float,
+        type=ROUGHNESS,
         default=0.03,
-        help="std of the surface roughness in R, in [0, 0.1] (default: 0.03)",
+        help=f"std of the surface roughness, {ROUGHNESS.describe()} (default: 0.03)",
     )
     square = group.add_mutually_exclusive_group()
     square.add_argument(
         "--k2-over-k1",
-        type=positive_float,
-        default=3.0 / 7.0,
-        help="square lattice: diagonal over nearest spring constant (default: 3/7)",
+        type=K2_OVER_K1,
+        default=None,
+        help=f"square lattice only: diagonal over nearest spring constant, "
+        f"{K2_OVER_K1.describe()} (default: 3/7)",
     )
     square.add_argument(
         "--nu",
-        type=float,
+        type=NU,
         default=None,
-        help="square lattice: k2/k1 that gives this Poisson ratio along the axes",
+        help=f"square lattice only: k2/k1 that gives this Poisson ratio along the axes, "
+        f"{NU.describe()}; a scene needs the ratio calibrated (0.1 and 0.3 are; "
+        "python -m calibration run --square K2_OVER_K1 adds one)",
     )
     add_wall_arguments(group)
     group.add_argument(
         "--contact-a",
-        type=positive_float,
+        type=CONTACT_A,
         default=300.0,
-        help="decay rate of the contact, a R (default: 300); finer disks need "
-        "a larger one, 300 * sqrt(n_disk / 800)",
+        help=f"decay rate of the contact, {CONTACT_A.describe()} (default: 300); finer "
+        "disks need a larger one, 300 * sqrt(n_disk / 800)",
     )
 
 
+# SceneSpec's fields by the options that set them, for messages the user can act on.
+OPTIONS = {
+    "gamma_deg": "--gamma",
+    "vn": "--vn",
+    "n_disk": "--n-disk",
+    "n_wall": "--n-wall",
+    "contact_a": "--contact-a",
+    "wall_ka": "--wall-ka",
+    "wall_width": "--wall-width",
+    "k2_over_k1": "--k2-over-k1",
+    "roughness": "--roughness",
+    "radius": "--radius",
+    "seed": "--seed",
+}
+
+
+def validate_spec(spec) -> None:
+    """SceneSpec.validate, its message naming the option rather than the field."""
+    try:
+        spec.validate()
+    except InputError as error:
+        word, _, rest = str(error).partition(" ")
+        field, colon = word.rstrip(":"), word[len(word.rstrip(":")) :]
+        if field in OPTIONS:
+            raise InputError(f"{OPTIONS[field]}{colon} {rest}") from None
+        raise
+
+
 def spec_from_args(args: argparse.Namespace):
+    """The SceneSpec of parsed scene options; an option that does not apply to
+    the chosen lattice is refused, not ignored."""
     from .materials import square_ratio_for_poisson
     from .scene import SceneSpec
 
-    if args.nu is not None:
-        args.k2_over_k1 = square_ratio_for_poisson(args.nu)
+    k2_over_k1 = SceneSpec.k2_over_k1
+    if args.k2_over_k1 is not None or args.nu is not None:
+        if args.lattice != "square":
+            option = "--nu" if args.nu is not None else "--k2-over-k1"
+            raise InputError(f"{option} applies to --lattice square only, got {args.lattice}")
+        k2_over_k1 = square_ratio_for_poisson(args.nu) if args.nu is not None else args.k2_over_k1
     return SceneSpec(
         lattice=args.lattice,
         seed=args.seed,
@@ -182,8 +218,9 @@ def spec_from_args(args: argparse.Namespace):
         n_disk=args.n_disk,
         n_wall=args.n_wall,
         roughness=args.roughness,
-        k2_over_k1=args.k2_over_k1,
+        k2_over_k1=k2_over_k1,
         wall_ka=args.wall_ka,
         wall_fixed=args.wall_fixed,
+        wall_width=args.wall_width,
         contact_a=args.contact_a,
     )

@@ -29,7 +29,7 @@ def table_text(a: float, v0: float, radius: float = 1.0, points: int = POINTS) -
     energy = v0 * np.exp(-a * r)
     force = a * energy
     header = (
-        f"# Contact repulsion E = V0 exp(-a r), F = -dE/dr (MODEL.md section 2)\n"
+        f"# Contact repulsion E = V0 exp(-a r), F = -dE/dr (docs/model.md section 2)\n"
         f"# a = {a!r} / length, V0 = {v0!r} energy\n\n"
         f"{KEYWORD}\nN {points} R {float(r[0])!r} {float(r[-1])!r}\n\n"
     )

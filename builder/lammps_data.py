@@ -16,8 +16,9 @@ import numpy as np
 from .contact_table import ensure_table, table_name
 from .scene import TYPE_NAMES, Scene
 
-# Decks run from the project's root and find the contact tables here.
-POTENTIALS = Path(__file__).resolve().parents[1] / "potentials"
+# Decks run from the project's root and find the contact tables here: derived
+# files, made when first needed, so under build/ and not in the source tree.
+TABLES = Path(__file__).resolve().parents[1] / "build" / "tables"
 
 SPRING_STYLES = ("harmonic/quartic", "class2", "harmonic")
 # The project's own bond style (potentials/bond_harmonic_quartic.cpp): the same
@@ -114,7 +115,7 @@ def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
 def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     """A LAMMPS include file with the scene's settings, as index variables."""
     info = scene.info
-    table = f"potentials/{table_name(info['contact']['a'], info['contact']['V0'])}"
+    table = f"build/tables/{table_name(info['contact']['a'], info['contact']['V0'])}"
     skin = 0.5 * float(info["wall_spacing"])
     cutoff = info["contact"]["cutoff"]
     # Longest segment of the wall's surface, with room for stretching (segments
@@ -144,7 +145,7 @@ def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
 def write_scene(scene: Scene, folder: Path | str, springs: str = DEFAULT_SPRINGS) -> Path:
     """Write scene.data, scene.lmp and scene.json into ``folder``.
 
-    Also writes the contact's table into potentials/ if it is missing (the pair
+    Also writes the contact's table into build/tables/ if it is missing (the pair
     variant of the contact reads it).
 
     Parameters
@@ -165,7 +166,7 @@ def write_scene(scene: Scene, folder: Path | str, springs: str = DEFAULT_SPRINGS
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     info = dict(scene.info, springs=springs)
-    ensure_table(POTENTIALS, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
+    ensure_table(TABLES, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
     (folder / "scene.data").write_text(data_file_text(scene, springs))
     (folder / "scene.lmp").write_text(settings_text(scene, springs))
     (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")

@@ -41,18 +41,42 @@ def square_poisson_ratio(k2_over_k1: float, angle_deg: float = 0.0) -> float:
     return float((k2 * k2 + s) / (k2 * (k1 + k2) + s))
 
 
+def _square_compliances(k2_over_k1: float) -> tuple[float, float, float]:
+    """S11, S12, S66 of the square lattice's continuum limit, in units of 1/k1.
+
+    The stiffnesses are C11 = k1 + k2, C12 = C66 = k2 (2-D, per unit length).
+    """
+    c11, c12, c66 = 1.0 + k2_over_k1, k2_over_k1, k2_over_k1
+    return c11 / (c11 * c11 - c12 * c12), -c12 / (c11 * c11 - c12 * c12), 1.0 / c66
+
+
 def square_wave_speed_factor(k2_over_k1: float, angle_deg: float = 0.0) -> float:
     """c^2 / (k1 d^2 / m) of the square lattice along (cos a, sin a).
 
     From the stiffnesses C11 = k1 + k2, C12 = C66 = k2 of the continuum limit:
     1/E(a) = S11 - (2 S11 - 2 S12 - S66) sin^2 a cos^2 a; the density is 1/d^2.
     """
-    c11, c12, c66 = 1.0 + k2_over_k1, k2_over_k1, k2_over_k1
-    s11 = c11 / (c11 * c11 - c12 * c12)
-    s12 = -c12 / (c11 * c11 - c12 * c12)
+    s11, s12, s66 = _square_compliances(k2_over_k1)
     a = np.radians(angle_deg)
-    compliance = s11 - (2.0 * s11 - 2.0 * s12 - 1.0 / c66) * (np.sin(a) * np.cos(a)) ** 2
+    compliance = s11 - (2.0 * s11 - 2.0 * s12 - s66) * (np.sin(a) * np.cos(a)) ** 2
     return float(1.0 / compliance)
+
+
+def square_shear_modulus(k2_over_k1: float, angle_deg: float = 0.0) -> float:
+    """Shear modulus G / k1 of the square lattice in the frame turned by ``angle_deg``.
+
+    Shear along (cos a, sin a) and its normal: 1/G(a) = S66 + (2 (S11 - S12)
+    - S66) sin^2 2a, the compliance turned by a. Along the axes G = C66 = k2,
+    at 45 degrees G = (C11 - C12) / 2 = k1 / 2.
+    """
+    s11, s12, s66 = _square_compliances(k2_over_k1)
+    a = np.radians(angle_deg)
+    return float(1.0 / (s66 + (2.0 * (s11 - s12) - s66) * np.sin(2.0 * a) ** 2))
+
+
+def square_bulk_modulus(k2_over_k1: float) -> float:
+    """2-D bulk modulus B / k1 = (C11 + C12) / 2 of the square lattice (any direction)."""
+    return (1.0 + 2.0 * k2_over_k1) / 2.0
 
 
 def square_ratio_for_poisson(nu: float, angle_deg: float = 0.0) -> float:

@@ -14,7 +14,8 @@ import numpy as np
 
 from . import bodies
 from .bodies import SURFACE, Body
-from .errors import InputError, require_choice, require_nonnegative, require_positive
+from .checks import Range
+from .errors import InputError, require_choice
 from .geometry import distance_to_polyline
 from .materials import spring_constant
 
@@ -30,10 +31,48 @@ TYPE_NAMES = {
 WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 # The readings of the wall that the paper leaves open (MODEL.md section 8):
 # n_wall is a number of points or "density" (the disk's number density), and
-# wall_ka is the wall's spring constant over the disk's, or "same-c" (the ka
-# that gives the wall the disk's wave speed).
+# wall_ka is the wall's spring constant over the random disk's (``wall_spring_constant``),
+# or "same-c" (the ka that gives the wall the wave speed c). Neither depends on
+# the disk's lattice, so that every lattice of a study meets the same wall.
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
+# The ranges of the scene's numbers, for SceneSpec.validate and the command line
+# (builder/cli.py) alike.
+ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
+SEED = Range(0, 2**32 - 1, integer=True)
+RADIUS = Range(1e-3, 1000.0, unit="R, the unit of length")
+N_DISK = Range(50, 100_000, integer=True)
+N_WALL = Range(50, 400_000, integer=True)
+ROUGHNESS = Range(0.0, 0.1, unit="R")
+K2_OVER_K1 = Range(0.0, 1000.0, low_open=True)
+NU = Range(0.0, 0.99, low_open=True)
+WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the random disk's")
+WALL_WIDTH = Range(4.0, 100.0, unit="R")
+CONTACT_A = Range(1.0, 10_000.0, unit="a R")
+# Where the default run resolves the contact (bench/stability.py,
+# docs/benchmarks/stability_speeds.md, three seeds per point): every normal speed up
+# to 0.3 c at speeds along the wall up to 0.6 c; at 0.4 c and 0.8 c along the
+# wall, or 0.5 c at 45 degrees, disk points go into the wall.
+VN = Range(0.0, 0.3, low_open=True, unit="units of c")
+MAX_TANGENTIAL_SPEED = 0.6  # c
+GAMMA = Range(0.0, 90.0, high_open=True, unit="degrees")  # in code, 0 (head-on) too
+KB_OVER_KA = Range(0.0, 1.0)
+WALL_HEIGHT = Range(0.5, 100.0, unit="R")
+
+
+def speed_warning(vn: float, gamma_deg: float) -> str | None:
+    """Why a run at (vn, gamma) may not resolve the contact, or None."""
+    tangential = vn * math.tan(math.radians(gamma_deg))
+    if tangential <= MAX_TANGENTIAL_SPEED * (1.0 + 1e-9):
+        return None
+    return (
+        f"the disk's speed along the wall, vn tan(gamma) = {tangential:.2f} c, exceeds "
+        f"{MAX_TANGENTIAL_SPEED:g} c, the most at which the default run was seen to resolve "
+        "the contact (docs/benchmarks/stability_speeds.md): expect disk points inside the wall, "
+        "or a contact longer than the wall"
+    )
+
+
 # Molecule IDs tell the bodies apart and which wall points are held fixed.
 DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 
@@ -75,7 +114,7 @@ class SceneSpec:
     wall_fixed: str = "sides+bottom"
     wall_width: float = 8.0  # in R
     wall_height: float = 2.0  # in R
-    wall_ka: float | str = 1.0  # wall's ka over the disk's, or "same-c": the disk's wave speed
+    wall_ka: float | str = 1.0  # wall's ka over the random disk's, or "same-c": wave speed c
     contact_a: float = 300.0  # decay rate of the contact, a R
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
@@ -108,41 +147,35 @@ class SceneSpec:
 
     def validate(self) -> None:
         require_choice("lattice", self.lattice, bodies.LATTICES)
-        if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
-            raise InputError(f"seed must be an integer >= 0, got {self.seed}")
-        if not 0.0 <= self.gamma_deg < 90.0:
-            raise InputError(f"gamma_deg must be in [0, 90) degrees, got {self.gamma_deg}")
-        if not 0.0 < self.vn < 1.0:
-            raise InputError(f"vn must be in (0, 1) (units of c), got {self.vn}")
-        require_positive("radius", self.radius)
-        if not self.n_disk >= 50:
-            raise InputError(f"n_disk must be an integer >= 50, got {self.n_disk}")
-        if self.n_wall != WALL_DENSITY and not (
-            isinstance(self.n_wall, int) and not isinstance(self.n_wall, bool) and self.n_wall >= 50
-        ):
+        SEED.check("seed", self.seed)
+        GAMMA.check("gamma_deg", self.gamma_deg)
+        VN.check("vn", self.vn)
+        RADIUS.check("radius", self.radius)
+        N_DISK.check("n_disk", self.n_disk)
+        if self.n_wall != WALL_DENSITY and not N_WALL.contains(self.n_wall):
             raise InputError(
-                f"n_wall must be an integer >= 50 or {WALL_DENSITY!r}, got {self.n_wall!r}"
+                f"n_wall must be {N_WALL.describe()} or {WALL_DENSITY!r}, got {self.n_wall!r}"
             )
-        if not 0.0 <= self.roughness <= 0.1:
-            raise InputError(f"roughness must be in [0, 0.1] (units of R), got {self.roughness}")
-        require_positive("k2_over_k1", self.k2_over_k1)
-        require_nonnegative("kb_over_ka", self.kb_over_ka)
+        ROUGHNESS.check("roughness", self.roughness)
+        K2_OVER_K1.check("k2_over_k1", self.k2_over_k1)
+        KB_OVER_KA.check("kb_over_ka", self.kb_over_ka)
         require_choice("wall_fixed", self.wall_fixed, WALL_FIXED_CHOICES)
-        if not self.wall_width >= 4.0:
-            raise InputError(f"wall_width must be >= 4 (units of R), got {self.wall_width}")
-        if not self.wall_height >= 0.5:
-            raise InputError(f"wall_height must be >= 0.5 (units of R), got {self.wall_height}")
-        if self.wall_ka != WALL_SAME_C and not (
-            isinstance(self.wall_ka, float) and 0.01 <= self.wall_ka <= 1000.0
-        ):
+        WALL_WIDTH.check("wall_width", self.wall_width)
+        WALL_HEIGHT.check("wall_height", self.wall_height)
+        if self.wall_ka != WALL_SAME_C and not WALL_KA.contains(self.wall_ka):
             raise InputError(
-                f"wall_ka must be a number in [0.01, 1000] (the wall's ka over the "
-                f"disk's) or {WALL_SAME_C!r}, got {self.wall_ka!r}"
+                f"wall_ka must be {WALL_KA.describe()} or {WALL_SAME_C!r}, got {self.wall_ka!r}"
             )
-        require_positive("contact_a", self.contact_a)
+        if not N_WALL.contains(self.wall_points):
+            raise InputError(
+                f"n_wall: the wall would have {self.wall_points} points (n_disk {self.n_disk} "
+                f"at the disk's density over a {self.wall_width:g} R wide wall); it must have "
+                f"{N_WALL.describe()}"
+            )
+        CONTACT_A.check("contact_a", self.contact_a)
         require_contact_resolved(self.contact_a, self.wall_spacing)
-        require_nonnegative("contact_time_guess", self.contact_time_guess)
-        require_positive("start_gap", self.start_gap)
+        Range(0.0, 1000.0).check("contact_time_guess", self.contact_time_guess)
+        Range(0.0, 100.0, low_open=True).check("start_gap", self.start_gap)
 
     @property
     def wall_spacing(self) -> float:
@@ -175,6 +208,40 @@ class Scene:
     def natural_lengths(self) -> np.ndarray:
         d = self.positions[self.springs[:, 0]] - self.positions[self.springs[:, 1]]
         return np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+
+
+def wall_spring_constant(spec: SceneSpec) -> tuple[float, float, dict]:
+    """The wall's ka, which depends on the wall's reading and not on the disk's lattice.
+
+    The unit of ``wall_ka`` is the random disk's ka: the ka that gives a random
+    lattice at the disk's number density (n_disk points in pi R^2) the wave speed
+    c. For the random disk it is the disk's own ka, so ``wall_ka`` = 1 is MODEL.md's
+    "one ka for every spring of both bodies"; the triangular and square disks meet
+    the random disk's wall. "same-c": the ka that gives the wall, a random lattice
+    at its own spacing, the wave speed c.
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene; only n_disk, radius and the wall's reading matter.
+
+    Returns
+    -------
+    ka_wall : float
+        The wall's quadratic spring constant.
+    ka_reference : float
+        The unit of ``wall_ka``: the random disk's ka.
+    wall_material : dict
+        The random lattice's entry of the materials table.
+    """
+    R = spec.radius
+    # The same expression as the random disk's spacing (bodies.make_disk), so that
+    # the random disk's ka and this reference are the same double.
+    reference_spacing = bodies.lattice_spacing("random", spec.n_disk / np.pi) * R
+    ka_reference, wall_material = spring_constant("random", reference_spacing)
+    if spec.wall_ka == WALL_SAME_C:
+        return spring_constant("random", spec.wall_spacing * R)[0], ka_reference, wall_material
+    return spec.wall_ka * ka_reference, ka_reference, wall_material
 
 
 def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
@@ -275,8 +342,7 @@ def build_scene(spec: SceneSpec) -> Scene:
     disk, wall = build_bodies(spec)
 
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
-    ka_same_c, wall_material = spring_constant("random", wall.spacing * R)
-    ka_wall = ka_same_c if spec.wall_ka == WALL_SAME_C else spec.wall_ka * ka_disk
+    ka_wall, ka_reference, wall_material = wall_spring_constant(spec)
     cutoff = wall.spacing * R
     gamma = np.radians(spec.gamma_deg)
     velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
@@ -331,6 +397,7 @@ def build_scene(spec: SceneSpec) -> Scene:
         wall,
         ka_disk,
         ka_wall,
+        ka_reference,
         cutoff,
         disk_material,
         wall_material,
@@ -346,6 +413,7 @@ def scene_info(
     wall: Body,
     ka_disk: float,
     ka_wall: float,
+    ka_reference: float,
     cutoff: float,
     disk_material: dict,
     wall_material: dict,
@@ -390,6 +458,8 @@ def scene_info(
         "max_natural_length": float(lengths.max()),
         "ka_disk": float(ka_disk),
         "ka_wall": float(ka_wall),
+        # the unit of spec.wall_ka: the same for every disk lattice (wall_spring_constant)
+        "ka_wall_reference": float(ka_reference),
         "kb_over_ka": spec.kb_over_ka,
         "contact": {"a": float(a), "V0": float(a * R / 2.0), "cutoff": float(cutoff)},
         "disk_mass": float(in_disk.sum()),

@@ -14,8 +14,10 @@ from pathlib import Path
 import numpy as np
 
 from . import bodies
-from .errors import InputError, require_choice, require_positive
+from .checks import Range
+from .errors import InputError, require_choice
 from .lammps_data import network_data_text
+from .scene import K2_OVER_K1
 
 GRIP = 1.5  # grips: the points within this many spacings of an end
 TYPE_NAMES = {1: "strip", 2: "left grip", 3: "right grip"}
@@ -33,7 +35,8 @@ class StripSpec:
 
     def validate(self) -> None:
         require_choice("lattice", self.lattice, bodies.LATTICES)
-        require_positive("k2_over_k1", self.k2_over_k1)
+        K2_OVER_K1.check("k2_over_k1", self.k2_over_k1)
+        Range(-180.0, 180.0).check("angle_deg", self.angle_deg)
         if not (self.length >= 4 * GRIP + 4 and self.width >= 4):
             raise InputError(
                 f"length must be >= {4 * GRIP + 4} and width >= 4 spacings, "

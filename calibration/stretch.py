@@ -59,6 +59,21 @@ class Stretch:
         return self.c2 * self.inner_density
 
     @property
+    def shear_modulus(self) -> float:
+        """E / (2 (1 + nu)) in units of ka: the shear modulus of the frame at 45
+        degrees to the pull. Shearing that frame is tension along the pull and as
+        much compression across it; exact for a pull along a mirror line of a
+        lattice whose elastic constants repeat every 90 degrees (the square one
+        at 0 and 45 degrees) and for an isotropic one (triangular, random)."""
+        return self.e_modulus / (2.0 * (1.0 + self.nu))
+
+    @property
+    def bulk_modulus(self) -> float:
+        """E / (2 (1 - nu)) in units of ka: the 2-D bulk modulus, on the same
+        lattices and pulls (then the same for every pull)."""
+        return self.e_modulus / (2.0 * (1.0 - self.nu))
+
+    @property
     def c2_strip(self) -> float:
         """c^2 of the strip as a whole (force / strain / mass per length): edges included."""
         return linear_coefficient(self.gauge_xx, self.force) / self.line_density

@@ -14,8 +14,10 @@ import numpy as np
 
 from builder.materials import (
     TABLE,
+    square_bulk_modulus,
     square_poisson_ratio,
     square_ratio_for_poisson,
+    square_shear_modulus,
     square_wave_speed_factor,
 )
 from builder.strips import StripSpec
@@ -28,7 +30,8 @@ RANDOM_STRIP = dict(length=120.0, width=40.0)
 
 def strip_specs(random_seeds: int, square_ratios: list[float]) -> list[StripSpec]:
     specs = [StripSpec("random", seed=seed, **RANDOM_STRIP) for seed in range(1, random_seeds + 1)]
-    specs.append(StripSpec("triangular"))
+    # the triangular lattice at 45 degrees too: its isotropy, measured
+    specs += [StripSpec("triangular", angle_deg=a) for a in (0.0, 45.0)]
     for ratio in square_ratios:
         specs += [StripSpec("square", k2_over_k1=ratio, angle_deg=a) for a in (0.0, 45.0)]
     return specs
@@ -47,11 +50,20 @@ def stretch_all(specs: list[StripSpec], workers: int = 2) -> list[Stretch]:
 
 
 def theory(lattice: str, ratio: float | None, angle: float) -> dict:
+    """Closed forms for a strip pulled at ``angle``; G is the shear modulus of
+    the frame at 45 degrees to the pull (``Stretch.shear_modulus``)."""
     if lattice == "triangular":
-        return {"c2": 1.0, "nu": 1.0 / 3.0, "E": 2.0 / np.sqrt(3.0)}
+        k = np.sqrt(3.0) / 4.0  # the Lame constants, both
+        return {"c2": 1.0, "nu": 1.0 / 3.0, "E": 2.0 / np.sqrt(3.0), "G": k, "B": 2.0 * k}
     if lattice == "square":
         c2 = square_wave_speed_factor(ratio, angle)
-        return {"c2": c2, "nu": square_poisson_ratio(ratio, angle), "E": c2}
+        return {
+            "c2": c2,
+            "nu": square_poisson_ratio(ratio, angle),
+            "E": c2,
+            "G": square_shear_modulus(ratio, angle + 45.0),
+            "B": square_bulk_modulus(ratio),
+        }
     return {}
 
 
@@ -77,6 +89,9 @@ def summarise(results: list[Stretch]) -> list[dict]:
             ("density_d2", [r.inner_density for r in runs]),
             ("nu_gauge", [r.nu_gauge for r in runs]),
             ("c2_strip", [r.c2_strip for r in runs]),
+            ("G", [r.shear_modulus for r in runs]),
+            ("B", [r.bulk_modulus for r in runs]),
+            ("G_over_B", [r.shear_modulus / r.bulk_modulus for r in runs]),
         ):
             values = np.array(values)
             sd = float(values.std(ddof=1)) if len(values) > 1 else 0.0
@@ -119,8 +134,79 @@ def calibrate(
     return table
 
 
+def anisotropy(materials: list[dict]) -> list[dict]:
+    """Shear and bulk moduli of each lattice along its axes and at 45 degrees.
+
+    A strip pulled at angle a gives the shear modulus of the frame at a + 45
+    (``Stretch.shear_modulus``): the 45-degree strip the axes' G, the axial
+    strip the 45-degree frame's. A lattice pulled along its axes only (the
+    random one, isotropic by construction: its sampler has no direction) has
+    the one G in both frames.
+
+    Parameters
+    ----------
+    materials : list of dict
+        The entries of the materials table (``summarise``).
+
+    Returns
+    -------
+    list of dict
+        Per lattice and k2/k1: nu along the axes, G of the axes' frame and of
+        the 45-degree frame, B, G/B of both, c at 45 degrees over c along the
+        axes, the two G and B over rho c^2 (c along the axes, the study's unit),
+        and G / (rho c^2) of an isotropic solid with the axial nu; ``theory``: the
+        same from the closed forms; ``measured_45``: whether a 45-degree strip
+        was pulled.
+    """
+    rows = []
+    for axial in (e for e in materials if e["angle_deg"] == 0.0):
+        diagonal = next(
+            (
+                e
+                for e in materials
+                if e["angle_deg"] == 45.0
+                and e["lattice"] == axial["lattice"]
+                and e["k2_over_k1"] == axial["k2_over_k1"]
+            ),
+            None,
+        )
+
+        def row(a: dict, d: dict) -> dict:
+            return {
+                "nu": a["nu"],
+                "G_axes": d["G"],
+                "G_45": a["G"],
+                "B": a["B"],
+                "B_45": d["B"],
+                "G_over_B_axes": d["G"] / a["B"],
+                "G_over_B_45": a["G"] / a["B"],
+                "c_45_over_c": float(np.sqrt(d["c2"] / a["c2"])),
+                "G_axes_over_rho_c2": d["G"] / a["E"],
+                "G_45_over_rho_c2": a["G"] / a["E"],
+                "B_over_rho_c2": a["B"] / a["E"],
+                "isotropic_G_over_rho_c2": 1.0 / (2.0 * (1.0 + a["nu"])),
+            }
+
+        measured = row(axial, diagonal or axial)
+        known = {}
+        if axial["theory"] and diagonal is not None:
+            known = row(axial["theory"], diagonal["theory"])
+        if axial["samples"] > 1 and diagonal is None:  # per-strip errors where they exist
+            measured["se"] = {key: axial[f"{key}_se"] for key in ("G", "B", "G_over_B")}
+        rows.append(
+            {
+                "lattice": axial["lattice"],
+                "k2_over_k1": axial["k2_over_k1"],
+                "measured_45": diagonal is not None,
+                **measured,
+                "theory": known,
+            }
+        )
+    return rows
+
+
 def markdown(table: dict) -> str:
-    """The table for docs/materials.md."""
+    """The tables for docs/materials.md."""
 
     def value(entry: dict, key: str) -> str:
         if entry["samples"] > 1:
@@ -142,5 +228,36 @@ def markdown(table: dict) -> str:
             f"| {e['lattice']} | {ratio} | {direction} | {e['samples']} "
             f"| {value(e, 'c2')} | {value(e, 'nu')} | {value(e, 'E')} "
             f"| {known(e, 'c2', 5)} | {known(e, 'nu', 4)} | {e['nonlinearity']:.1e} |"
+        )
+    return "\n".join(lines) + "\n\n" + anisotropy_markdown(table["materials"])
+
+
+def anisotropy_markdown(materials: list[dict]) -> str:
+    """The shear and bulk moduli table (``anisotropy``): measured, (closed form)."""
+
+    def cell(r: dict, key: str, digits: int = 4) -> str:
+        text = f"{r[key]:.{digits}f}"
+        short = key.replace("_axes", "").replace("_45", "")
+        if "se" in r and short in r["se"]:
+            text += f" +- {r['se'][short]:.{digits}f}"
+        if key in r["theory"]:
+            text += f" ({r['theory'][key]:.{digits}f})"
+        return text
+
+    lines = [
+        "| lattice | k2/k1 | nu | G, axes (ka) | G, 45 deg (ka) | B (ka) | G/B, axes "
+        "| G/B, 45 deg | c at 45 deg / c | G/(rho c^2), axes | G/(rho c^2), 45 deg "
+        "| B/(rho c^2) | isotropic solid of this nu: G/(rho c^2) |",
+        "|" + "---|" * 13,
+    ]
+    for r in anisotropy(materials):
+        ratio = "-" if r["k2_over_k1"] is None else f"{r['k2_over_k1']:.4f}"
+        name = r["lattice"] + ("" if r["measured_45"] else " (isotropic: one G)")
+        lines.append(
+            f"| {name} | {ratio} | {r['nu']:.4f} | {cell(r, 'G_axes')} | {cell(r, 'G_45')} "
+            f"| {cell(r, 'B')} | {cell(r, 'G_over_B_axes')} | {cell(r, 'G_over_B_45')} "
+            f"| {cell(r, 'c_45_over_c')} | {cell(r, 'G_axes_over_rho_c2')} "
+            f"| {cell(r, 'G_45_over_rho_c2')} | {cell(r, 'B_over_rho_c2')} "
+            f"| {r['isotropic_G_over_rho_c2']:.4f} |"
         )
     return "\n".join(lines)

@@ -7,28 +7,47 @@ import sys
 import time
 from pathlib import Path
 
+from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
     add_scene_arguments,
     add_wall_arguments,
-    count,
-    positive_float,
     spec_from_args,
+    validate_spec,
 )
 from builder.errors import BuildError, InputError
+from builder.scene import CONTACT_A, N_DISK, ROUGHNESS, VN, speed_warning
 
 from .lammps_run import LammpsError
 from .options import (
     CHECK_INTERVAL,
     CONTACTS,
+    DRIFT,
+    DT,
+    DUMP_EVERY,
     INTEGRATORS,
     MAX_CHUNK_TIME,
+    NPROCS,
+    NRESPA,
     ROUTES,
     RULES,
     SPRINGS,
+    STEPS,
+    TMAX,
     RunOptions,
 )
 from .stopping import Stopped, stop_on_signals
+from .study import (
+    ANGLES,
+    BATCH,
+    COT_GAMMA,
+    LATTICES,
+    PARTITIONS,
+    SAMPLES,
+    WORKERS,
+    EnvironmentFault,
+    runs_folder,
+)
 
 MAX_DRIFT_HELP = (
     "flag a run whose energy drift (change of the total energy over the initial "
@@ -45,18 +64,21 @@ def study_name(text: str) -> str:
     return text
 
 
+study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y")  # tests/test_bad_input.py
+
+
 def add_run_arguments(parser) -> None:
     group = parser.add_argument_group("run")
     defaults = RunOptions()
     group.add_argument(
         "--dt",
-        type=positive_float,
+        type=DT,
         default=defaults.dt,
-        help=f"time step in R/c (default: {defaults.dt})",
+        help=f"time step, {DT.describe()} (default: {defaults.dt})",
     )
     group.add_argument(
         "--check",
-        type=count(1),
+        type=STEPS,
         default=defaults.check,
         help="steps between checks whether the impact is over, a multiple of the "
         f"series' rows; check * dt must be at most {MAX_CHUNK_TIME:g} R/c (default: the "
@@ -65,9 +87,10 @@ def add_run_arguments(parser) -> None:
     group.add_argument("--integrator", choices=INTEGRATORS, default=defaults.integrator)
     group.add_argument(
         "--nrespa",
-        type=count(1),
-        default=defaults.nrespa,
-        help="respa: contact steps per step of --dt (the contact alone on the inner level)",
+        type=NRESPA,
+        default=None,
+        help=f"respa: contact steps per step of --dt (the contact alone on the inner "
+        f"level), {NRESPA.describe()} (default: {defaults.nrespa})",
     )
     group.add_argument(
         "--contact",
@@ -79,7 +102,7 @@ def add_run_arguments(parser) -> None:
     group.add_argument(
         "--rule",
         choices=RULES,
-        default=defaults.rule,
+        default=None,
         help="segment contact: lever rule (default) or explicit gradient",
     )
     group.add_argument(
@@ -91,12 +114,15 @@ def add_run_arguments(parser) -> None:
     )
     group.add_argument(
         "--tmax",
-        type=positive_float,
+        type=TMAX,
         default=defaults.tmax,
-        help="stop with an error if the disk has not left by then (R/c)",
+        help=f"stop with an error if the disk has not left by then, {TMAX.describe()}",
     )
     group.add_argument(
-        "--dump-every", type=count(0), default=0, help="steps between dump frames (0: no dump)"
+        "--dump-every",
+        type=DUMP_EVERY,
+        default=0,
+        help=f"steps between dump frames, {DUMP_EVERY.describe()} (0: no dump)",
     )
     group.add_argument(
         "--stop-rule",
@@ -105,7 +131,9 @@ def add_run_arguments(parser) -> None:
         help="when the impact is over: predict (rigid-body extrapolation, default) "
         "or clearance (wait until the disk clears every asperity)",
     )
-    group.add_argument("--np", dest="nprocs", type=count(1), default=1, help="MPI ranks")
+    group.add_argument(
+        "--np", dest="nprocs", type=NPROCS, default=1, help=f"MPI ranks, {NPROCS.describe()}"
+    )
     group.add_argument(
         "--route",
         choices=ROUTES,
@@ -114,20 +142,27 @@ def add_run_arguments(parser) -> None:
     )
     group.add_argument(
         "--max-drift",
-        type=positive_float,
+        type=DRIFT,
         default=defaults.max_drift,
         help=MAX_DRIFT_HELP.format(defaults.max_drift),
     )
 
 
-def options_from_args(args) -> RunOptions:
+def options_from_args(args: argparse.Namespace) -> RunOptions:
+    """The run's options; an option that does not apply to the chosen
+    integrator or contact is refused, not ignored."""
+    if args.nrespa is not None and args.integrator != "respa":
+        raise InputError(f"--nrespa applies to --integrator respa only, got {args.integrator}")
+    if args.rule is not None and args.contact != "segment":
+        raise InputError(f"--rule applies to --contact segment only, got {args.contact}")
+    defaults = RunOptions()
     return RunOptions(
         dt=args.dt,
         check=args.check,
         integrator=args.integrator,
-        nrespa=args.nrespa,
+        nrespa=args.nrespa if args.nrespa is not None else defaults.nrespa,
         contact=args.contact,
-        rule=args.rule,
+        rule=args.rule if args.rule is not None else defaults.rule,
         springs=args.springs,
         tmax=args.tmax,
         dump_every=args.dump_every,
@@ -139,14 +174,20 @@ def options_from_args(args) -> RunOptions:
 
 
 def unstable_hint(error: Exception, args) -> str:
-    """For a run that blew up: its time step against the default's."""
-    if not (
-        isinstance(error, LammpsError)
-        and "unstable" in str(error)
-        and getattr(args, "dt", None) is not None
-    ):
+    """For a run that blew up or let a disk point into the wall: the step and
+    speed it ran at, and what to try."""
+    text = str(error)
+    if not isinstance(error, LammpsError) or getattr(args, "dt", None) is None:
         return ""
     default = RunOptions().dt
+    if "inside the wall" in text:
+        vn = f"v_n = {args.vn:g} c, " if getattr(args, "vn", None) is not None else ""
+        return (
+            f" ({vn}dt = {args.dt:g} R/c: the contact was not resolved; try a smaller --dt"
+            f"{' or --vn' if vn else ''}; docs/benchmarks/stability_speeds.md)"
+        )
+    if "unstable" not in text:
+        return ""
     return (
         f" (dt = {args.dt:g} R/c; the default, {default:g}, is the largest step found "
         f"accurate, docs/benchmarks/time_vs_error.md)"
@@ -167,10 +208,8 @@ def warn_if_inaccurate(result: dict) -> None:
         )
 
 
-def main(argv: list[str] | None = None) -> int:
-    from .impact import run_impact, run_scene
-    from .report import format_table
-
+def parser() -> OneLineParser:
+    """python -m runner's options."""
     parser = OneLineParser(prog="python -m runner", description="Run oblique impacts with LAMMPS.")
     commands = parser.add_subparsers(dest="command", required=True)
 
@@ -178,28 +217,67 @@ def main(argv: list[str] | None = None) -> int:
     add_scene_arguments(impact)
     add_run_arguments(impact)
     impact.add_argument(
-        "--out", default=None, help="run folder (default: runs/<lattice>_s<seed>_g<gamma>)"
+        "--out",
+        type=OutFolder(),
+        default=None,
+        help="run folder (default: runs/<lattice>_s<seed>_g<gamma>)",
     )
 
     run = commands.add_parser("run", help="run an existing scene folder (python -m builder scene)")
-    run.add_argument("scene", help="folder with scene.data, scene.lmp and scene.json")
+    run.add_argument(
+        "scene",
+        type=InPath("folder", ("scene.data", "scene.lmp", "scene.json")),
+        help="folder with scene.data, scene.lmp and scene.json",
+    )
     add_run_arguments(run)
 
     study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
+    add_study_arguments(study)
+    return parser
+
+
+def add_study_arguments(study) -> None:
+    """runner study's options; None means 'the study's own' (its study.json, or the preset)."""
+    from .study import PRESETS
+
     study.add_argument(
         "preset",
-        choices=("paper", "demo"),
-        help="paper: MODEL.md section 7 in full; demo: the random lattice, 4 samples",
+        choices=tuple(PRESETS),
+        help="paper: the study of docs/model.md section 7 in full; demo: the random lattice, "
+        "4 samples",
     )
-    study.add_argument(
-        "--samples", type=count(1), default=None, help="samples per lattice and angle"
+    grid = study.add_argument_group(
+        "the grid (default: the study's study.json if it exists, else the preset's)"
     )
-    study.add_argument("--angles", type=count(2), default=None, help="number of angles")
-    study.add_argument(
+    grid.add_argument(
+        "--samples",
+        type=SAMPLES,
+        default=None,
+        help=f"samples per lattice and angle, {SAMPLES.describe()}",
+    )
+    grid.add_argument(
+        "--angles", type=ANGLES, default=None, help=f"number of angles, {ANGLES.describe()}"
+    )
+    grid.add_argument(
+        "--cot-gamma",
+        nargs="+",
+        type=COT_GAMMA,
+        default=None,
+        metavar="C",
+        help=f"these angles instead of --angles log-spaced ones: cot gamma values, each "
+        f"{COT_GAMMA.describe()}",
+    )
+    grid.add_argument(
         "--lattices",
         nargs="+",
+        choices=tuple(LATTICES),
         default=None,
-        help="among random triangular square_nu0.1 square_nu0.3",
+        help="among " + " ".join(LATTICES),
+    )
+    grid.add_argument(
+        "--extend",
+        action="store_true",
+        help="let --samples and --lattices add to an existing study (never remove)",
     )
     study.add_argument(
         "--name",
@@ -208,66 +286,97 @@ def main(argv: list[str] | None = None) -> int:
         help="folder under runs/ (default: the preset): one folder name, "
         "no '/', '..' or whitespace",
     )
-    study.add_argument("--workers", type=count(1), default=2, help="worker processes (default: 2)")
+    study.add_argument(
+        "--workers",
+        type=WORKERS,
+        default=2,
+        help=f"worker processes, {WORKERS.describe()} (default: 2)",
+    )
     study.add_argument(
         "--partitions",
-        type=count(0),
+        type=PARTITIONS,
         default=0,
-        help="run on this many LAMMPS partitions under mpirun instead of workers",
+        help=f"run on this many LAMMPS partitions under mpirun instead of workers, "
+        f"{PARTITIONS.describe()}",
     )
     study.add_argument(
         "--batch-size",
-        type=count(1),
+        type=BATCH,
         default=16,
-        help="with --partitions: impacts per partition in one MPI job (default: 16)",
+        help=f"with --partitions: impacts per partition in one MPI job, {BATCH.describe()} "
+        "(default: 16)",
     )
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
-    study.add_argument("--dt", type=positive_float, default=None, help="time step, R/c")
-    study.add_argument(
-        "--n-disk", type=count(50), default=None, help="points in each disk (default: 800)"
+    scene = study.add_argument_group("the scene and the run (default: the study's)")
+    scene.add_argument("--dt", type=DT, default=None, help=f"time step, {DT.describe()}")
+    scene.add_argument(
+        "--vn", type=VN, default=None, help=f"normal approach speed, {VN.describe()}"
     )
-    study.add_argument(
-        "--wall-width",
-        type=positive_float,
+    scene.add_argument(
+        "--roughness",
+        type=ROUGHNESS,
         default=None,
-        help="wall width in R (default: 8, MODEL.md's; see docs/model.md for grazing angles)",
+        help=f"std of the surface roughness, {ROUGHNESS.describe()}",
     )
-    study.add_argument(
+    scene.add_argument(
+        "--n-disk",
+        type=N_DISK,
+        default=None,
+        help=f"points in each disk, {N_DISK.describe()} (default: 800)",
+    )
+    scene.add_argument(
         "--contact-a",
-        type=positive_float,
+        type=CONTACT_A,
         default=None,
-        help="contact decay rate a R (default: 300; 300 * sqrt(n_disk / 800) for finer disks)",
+        help=f"contact decay rate, {CONTACT_A.describe()} (default: 300; 300 * sqrt(n_disk / "
+        "800) for finer disks)",
     )
-    add_wall_arguments(
-        study.add_argument_group("the wall's reading (default: the preset's)"), defaults=False
-    )
-    study.add_argument(
+    add_wall_arguments(scene, defaults=False)
+    scene.add_argument(
         "--max-drift",
-        type=positive_float,
+        type=DRIFT,
         default=None,
         help=MAX_DRIFT_HELP.format(RunOptions().max_drift),
     )
-    study.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
-    study.add_argument(
+    pages = study.add_argument_group("tables, fits and the page")
+    pages.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
+    pages.add_argument(
         "--from-tables",
         metavar="DIR",
+        type=InPath("folder", ("impacts.csv", "failed.csv", "study.json")),
         default=None,
-        help="only docs/results.md and its figures, from a study's tables in DIR "
-        "(docs/results: the committed paper study), without its runs",
+        help="only the page and its figures, from a study's tables in DIR (docs/results: "
+        "the committed paper study), without its runs; into runs/<name>/ (default name: "
+        "<preset>_from_tables), or with --docs into docs/",
+    )
+    pages.add_argument(
+        "--docs",
+        action="store_true",
+        help="write the page, its figures and tables into docs/ (the paper preset's "
+        "docs/results.md; make paper does this) instead of the study's folder",
     )
 
-    args = parser.parse_args(argv)
+
+def main(argv: list[str] | None = None) -> int:
+    from .impact import run_impact, run_scene
+    from .report import format_table
+
+    args = parser().parse_args(argv)
     try:
         if args.command == "impact":
             spec = spec_from_args(args)
-            out = args.out or f"runs/{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
+            out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
+            require_out_folder("--out", out)
+            validate_spec(spec)
+            if warning := speed_warning(spec.vn, spec.gamma_deg):
+                print(f"python -m runner: warning: {warning}", file=sys.stderr)
             results = [run_impact(spec, out, options_from_args(args))]
         elif args.command == "run":
             results = [run_scene(args.scene, options_from_args(args))]
         else:
             with stop_on_signals():
                 return run_study_command(args)
-    except (InputError, BuildError, LammpsError) as error:
+    except (InputError, BuildError, LammpsError, EnvironmentFault) as error:
         print(f"python -m runner: error: {error}{unstable_hint(error, args)}", file=sys.stderr)
         return 2 if isinstance(error, InputError) else 1
     except Stopped as stop:
@@ -283,49 +392,93 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def run_study_command(args) -> int:
-    from dataclasses import replace
+def shown(path: Path | str) -> Path:
+    """A path as the user would type it: from the current folder where it is inside."""
+    path = Path(path)
+    return path.relative_to(Path.cwd()) if path.is_relative_to(Path.cwd()) else path
 
+
+# runner study's options that only the sweep itself uses, and those that make
+# a study; --from-tables takes neither, --report-only not the first.
+SWEEP_OPTIONS = {"workers": 2, "partitions": 0, "batch_size": 16, "retry_failed": False}
+STUDY_OPTIONS = (
+    "samples",
+    "angles",
+    "cot_gamma",
+    "lattices",
+    "extend",
+    "dt",
+    "vn",
+    "roughness",
+    "n_disk",
+    "contact_a",
+    "n_wall",
+    "wall_ka",
+    "wall_fixed",
+    "wall_width",
+    "max_drift",
+    "report_only",
+)
+
+
+def option(dest: str) -> str:
+    return "--" + dest.replace("_", "-")
+
+
+def refuse_idle_options(args: argparse.Namespace) -> None:
+    """An option the command would not use is refused, not ignored."""
+    given = lambda dest, default=None: getattr(args, dest) not in (None, default, False)  # noqa: E731
+    if args.from_tables:
+        unused = [d for d in (*STUDY_OPTIONS, *SWEEP_OPTIONS) if given(d, SWEEP_OPTIONS.get(d))]
+        if unused:
+            raise InputError(
+                f"{option(unused[0])} does not apply to --from-tables, which remakes a page "
+                "from tables alone"
+            )
+        return
+    if args.report_only:
+        unused = [d for d in SWEEP_OPTIONS if given(d, SWEEP_OPTIONS[d])] + (
+            ["extend"] if args.extend else []
+        )
+        if unused:
+            raise InputError(
+                f"{option(unused[0])} does not apply to --report-only, which runs nothing"
+            )
+    if args.partitions == 0 and args.batch_size != SWEEP_OPTIONS["batch_size"]:
+        raise InputError("--batch-size applies to --partitions only")
+    if args.partitions and args.workers != SWEEP_OPTIONS["workers"]:
+        raise InputError("--workers does not apply to --partitions (each partition is a worker)")
+
+
+def run_study_command(args) -> int:
     from analysis.report import report, report_from_tables
 
-    from .study import PRESETS, record_wall_clock, run_study
+    from .study import DOC_PAGES, ROOT, record_wall_clock, run_study, study_from_args
 
-    docs = Path(__file__).resolve().parents[1] / "docs"
+    docs = ROOT / "docs"
+    refuse_idle_options(args)
+    if args.docs and args.preset not in DOC_PAGES:
+        raise InputError(
+            f"--docs: the {args.preset} preset has no page in docs/; "
+            f"presets with one: {', '.join(DOC_PAGES)}"
+        )
     if args.from_tables:
-        summary = report_from_tables(
-            Path(args.from_tables), docs / "results.md", preset=args.preset
+        name = args.name or f"{args.preset}_from_tables"
+        out = docs / "results" if args.docs else runs_folder() / name
+        page = docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else out / "results.md"
+        require_out_folder("--name", out)
+        if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
+            raise InputError(
+                f"--name {name}: {out} holds a study, which the tables would replace; "
+                "give another --name"
+            )
+        summary = report_from_tables(args.from_tables, page, preset=args.preset, out=out)
+        print(
+            f"{summary['rows']} impacts, {summary['failed']} failed; "
+            f"results in {shown(summary['page'])}"
         )
-        page = Path(summary["page"])
-        page = page.relative_to(Path.cwd()) if page.is_relative_to(Path.cwd()) else page
-        print(f"{summary['rows']} impacts, {summary['failed']} failed; results in {page}")
         return 0
-    study = PRESETS[args.preset]
-    changes = {
-        key: value
-        for key, value in (
-            ("samples", args.samples),
-            ("angles", args.angles),
-            ("name", args.name),
-            ("n_disk", args.n_disk),
-            ("wall_width", args.wall_width),
-            ("contact_a", args.contact_a),
-            ("n_wall", args.n_wall),
-            ("wall_ka", args.wall_ka),
-            ("wall_fixed", args.wall_fixed),
-        )
-        if value is not None
-    }
-    if args.lattices:
-        changes["lattices"] = tuple(args.lattices)
-    options = {
-        key: value for key, value in (("dt", args.dt), ("max_drift", args.max_drift)) if value
-    }
-    if options:
-        changes["options"] = replace(study.options, **options)
-    study = replace(study, **changes)
-    study.validate()
-    if args.report_only and not (study.folder / "study.json").exists():
-        raise InputError(f"--report-only: no study in {study.folder}; run it first")
+    study = study_from_args(args)
     if not args.report_only:
         start = time.monotonic()
         if args.partitions:
@@ -337,14 +490,11 @@ def run_study_command(args) -> int:
         else:
             counts = run_study(study, args.workers, args.retry_failed)
         record_wall_clock(study, time.monotonic() - start, counts, args.partitions or args.workers)
-    # the paper's study, whatever its sample count, is the one the docs show, and
-    # its tables go into docs/results/, from which --from-tables remakes the page
-    paper = args.preset == "paper" and args.name is None
     summary = report(
         study,
-        page=docs / "results.md" if paper else None,
+        page=docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else None,
         preset=args.preset,
-        tables=docs / "results" if paper else None,
+        tables=docs / "results" if args.docs else None,
     )
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (
@@ -352,12 +502,9 @@ def run_study_command(args) -> int:
         if summary["drift_exceeded"]
         else ""
     )
-    shown = Path(summary["page"])
-    if shown.is_relative_to(Path.cwd()):  # as the user would type it
-        shown = shown.relative_to(Path.cwd())
     print(
         f"{summary['rows']} impacts{drift}, {summary['failed']} failed"
-        f"{f' ({causes})' if causes else ''}; results in {shown}"
+        f"{f' ({causes})' if causes else ''}; results in {shown(summary['page'])}"
     )
     return 1 if summary["failed"] else 0
 

@@ -8,6 +8,7 @@ import subprocess
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
+from builder.checks import word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -56,11 +57,8 @@ def git_revision() -> str:
 def check_folder(folder: Path | str) -> None:
     """A run folder's path must be one word to LAMMPS."""
     folder = Path(folder).resolve()
-    if any(c.isspace() for c in str(folder)):
-        raise InputError(
-            f"scene: the folder's path must not contain spaces (LAMMPS splits "
-            f"commands at them): {folder}"
-        )
+    if problem := word_problem(str(folder)):
+        raise InputError(f"scene: the folder's path {problem}: {folder}")
 
 
 def run_scene(

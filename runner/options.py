@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from analysis.result import MAX_DRIFT
-from builder.errors import InputError, require_choice, require_positive
+from builder.checks import Range
+from builder.errors import InputError, require_choice
 from builder.lammps_data import DEFAULT_SPRINGS, SPRING_STYLES
 
 INTEGRATORS = ("verlet", "respa")
@@ -22,6 +23,15 @@ CHECK_INTERVAL = 0.8  # R/c between checks whether the impact is over
 # picks by the default's criteria (docs/benchmarks/time_vs_error.md); not the
 # default integrator until a whole study has been checked against Verlet's.
 RESPA_DT, RESPA_NRESPA = 0.004, 2
+# The ranges of the run's numbers, for RunOptions.validate and the command
+# line alike. No scene runs above dt 0.032 (docs/benchmarks/stability.md).
+DT = Range(1e-5, 0.05, unit="R/c")
+TMAX = Range(0.0, 10_000.0, low_open=True, unit="R/c")
+NRESPA = Range(1, 100, integer=True)
+STEPS = Range(1, 10_000_000, integer=True)  # every, check
+DUMP_EVERY = Range(0, 10_000_000, integer=True)
+NPROCS = Range(1, 4096, integer=True)
+DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
 
 
 @dataclass
@@ -49,23 +59,24 @@ class RunOptions:
     )
 
     def validate(self) -> None:
-        require_positive("dt", self.dt)
+        DT.check("dt", self.dt)
         require_choice("integrator", self.integrator, INTEGRATORS)
-        if not (isinstance(self.nrespa, int) and self.nrespa >= 1):
-            raise InputError(f"nrespa must be an integer >= 1, got {self.nrespa}")
+        NRESPA.check("nrespa", self.nrespa)
         require_choice("contact", self.contact, CONTACTS)
         require_choice("rule", self.rule, RULES)
         require_choice("springs", self.springs, SPRINGS)
-        require_positive("tmax", self.tmax)
-        require_positive("max_drift", self.max_drift)
+        TMAX.check("tmax", self.tmax)
+        DRIFT.check("max_drift", self.max_drift)
         for name in ("every", "check"):
             value = getattr(self, name)
-            if not (isinstance(value, int) and value >= 0):
-                raise InputError(
-                    f"{name} must be an integer >= 1, or 0 for the default, got {value}"
-                )
-        if not (isinstance(self.nprocs, int) and self.nprocs >= 1):
-            raise InputError(f"nprocs must be an integer >= 1, got {self.nprocs}")
+            if value != 0:
+                STEPS.check(f"{name} (0 for the default)", value)
+        NPROCS.check("nprocs", self.nprocs)
+        if self.tmax / self.dt > STEPS.high:
+            raise InputError(
+                f"tmax / dt must be at most {STEPS.high:.0e} steps, got {self.tmax:g} / "
+                f"{self.dt:g}; give a larger dt or a smaller tmax"
+            )
         every, check = self.every_steps, self.check_steps
         # the deck learns that the disk has touched from the contact energy at its
         # checks: checks farther apart than a contact lasts (9 R/c and more)
@@ -78,8 +89,7 @@ class RunOptions:
             )
         if check % every:
             raise InputError(f"check must be a multiple of every ({every}), got {check}")
-        if not (isinstance(self.dump_every, int) and self.dump_every >= 0):
-            raise InputError(f"dump_every must be an integer >= 0, got {self.dump_every}")
+        DUMP_EVERY.check("dump_every", self.dump_every)
         if self.dump_every and check % self.dump_every:
             raise InputError(
                 f"dump_every must divide check ({check}) so that the last "

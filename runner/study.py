@@ -19,12 +19,15 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result, write_json_atomically
+from builder.checks import Range, require_out_folder, word_problem
+from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
+from builder.materials import calibrated, square_ratio_for_poisson
+from builder.scene import SceneSpec, build_scene, speed_warning, wall_spring_constant
 
-from .impact import check_folder, run_scene
-from .lammps_run import lammps_error
+from .impact import run_scene
+from .lammps_run import ROOT as LAMMPS_ROOT
+from .lammps_run import STYLE_LIBRARIES, lammps_error
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -37,9 +40,37 @@ LATTICES = {
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
+# The grid's numbers. A study larger than MAX_IMPACTS is refused with its
+# size and the time it would take at IMPACTS_PER_WORKER_MINUTE, the paper
+# study's rate per worker (162 per minute on 2 workers, docs/results.md).
+SAMPLES = Range(1, 10_000, integer=True)
+ANGLES = Range(2, 1_000, integer=True)
+COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
+WORKERS = Range(1, 1_024, integer=True)
+PARTITIONS = Range(0, 4_096, integer=True)
+BATCH = Range(1, 10_000, integer=True)
+MAX_IMPACTS = 200_000
+IMPACTS_PER_WORKER_MINUTE = 81.0
+# Presets whose page is committed under docs/, written only with --docs.
+DOC_PAGES = {"paper": "results"}
+# What may differ between a study's study.json and a command that resumes it
+# with --extend: more samples, more lattices.
+EXTENDABLE = ("samples", "lattices")
 # An unreadable result.json is moved aside to this name, kept for a look, and
 # its impact runs again.
 CORRUPT = "result.json.corrupt"
+# A result (or failure) on a wall of other springs than the study's (the
+# triangular and square disks' walls before every lattice met the random
+# disk's) is moved aside to a name with this suffix, and its impact runs again.
+OTHER_WALL = ".other-wall"
+# What rebuilding or pruning a folder leaves in it.
+SET_ASIDE = (CORRUPT, "result.json" + OTHER_WALL, "failed.json" + OTHER_WALL)
+
+
+def runs_folder() -> Path:
+    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
+    cluster's scratch space; the tests' temporary folder)."""
+    return Path(os.environ.get("IMPACT_RUNS") or ROOT / "runs")
 
 
 def name_problem(name: str) -> str | None:
@@ -53,9 +84,7 @@ def name_problem(name: str) -> str | None:
         return "must be a non-empty folder name"
     if os.sep in name or (os.altsep and os.altsep in name) or ".." in name:
         return "must be one folder under runs/, without '/' or '..'"
-    if any(c.isspace() for c in name):
-        return "must not contain whitespace (LAMMPS splits its commands at it)"
-    return None
+    return word_problem(name)
 
 
 def study_angles(count: int) -> list[float]:
@@ -80,10 +109,13 @@ class Study:
     name: str
     lattices: tuple[str, ...] = tuple(LATTICES)
     angles: int = 16
+    # explicit angles, as cot gamma; empty: `angles` of them log-spaced (study_angles)
+    cot_gamma: tuple[float, ...] = ()
     samples: int = 100
     first_seed: int = 1
     vn: float = 0.1
     n_disk: int = 800
+    roughness: float = SceneSpec.roughness
     wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
     contact_a: float = 300.0  # a R; finer disks need more (docs/contact.md)
     n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
@@ -93,31 +125,73 @@ class Study:
 
     @property
     def folder(self) -> Path:
-        return ROOT / "runs" / self.name
+        return runs_folder() / self.name
 
     def validate(self) -> None:
-        from builder.errors import InputError
-
         if problem := name_problem(self.name):
             raise InputError(f"name {problem}, got {self.name!r}")
-        check_folder(self.folder)  # the clone's own path, for LAMMPS
+        require_out_folder("name", self.folder)
+        if not self.lattices:
+            raise InputError(f"lattices must be among {', '.join(LATTICES)}; got none")
         for lattice in self.lattices:
             if lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
-        if self.angles < 2 or self.samples < 1:
+        ANGLES.check("angles", self.angles)
+        for value in self.cot_gamma:
+            COT_GAMMA.check("cot_gamma", value)
+        if self.cot_gamma and len(self.cot_gamma) != self.angles:
             raise InputError(
-                f"angles must be >= 2 and samples >= 1, got {self.angles}, {self.samples}"
+                f"angles must be the number of cot_gamma values ({len(self.cot_gamma)}), "
+                f"got {self.angles}"
+            )
+        SAMPLES.check("samples", self.samples)
+        size = self.samples * self.angles * len(self.lattices)
+        if size > MAX_IMPACTS:
+            hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
+            raise InputError(
+                f"samples x angles x lattices must be at most {MAX_IMPACTS} impacts, got "
+                f"{self.samples} x {self.angles} x {len(self.lattices)} = {size}, about "
+                f"{hours:,.0f} hours on 2 workers of this project's machine"
             )
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+
+    def gammas(self) -> list[float]:
+        """The study's angles from the wall's normal, degrees, rounded to 1e-4."""
+        if self.cot_gamma:
+            return [round(float(np.degrees(np.arctan(1.0 / c))), 4) for c in self.cot_gamma]
+        return study_angles(self.angles)
+
+    def grid(self) -> dict:
+        """What the study's tables depend on, as study.json records it."""
+        values = asdict(self)
+        values.pop("name")
+        return values
+
+    @classmethod
+    def from_json(cls, path: Path) -> Study:
+        """The study a study.json records; fields it lacks (older studies) take
+        their defaults, keys that are not fields (wall_clock) are skipped."""
+        try:
+            info = json.loads(path.read_text())
+            fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
+            fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
+            fields["cot_gamma"] = tuple(fields.get("cot_gamma", ()))
+            options = fields.pop("options", {})
+            known = RunOptions.__dataclass_fields__
+            return cls(
+                **fields, options=RunOptions(**{k: v for k, v in options.items() if k in known})
+            )
+        except (OSError, ValueError, TypeError) as error:
+            raise InputError(f"{path}: not a study's record ({error})") from None
 
     def jobs(self) -> list[dict]:
         """Every impact, grouped by sample: (lattice, seed) then angle."""
         out = []
         for seed in range(self.first_seed, self.first_seed + self.samples):
             for lattice in self.lattices:
-                for gamma in study_angles(self.angles):
+                for gamma in self.gammas():
                     folder = self.folder / lattice / f"s{seed}" / f"g{gamma:.4f}"
                     out.append(
                         {"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)}
@@ -130,6 +204,7 @@ class Study:
             gamma_deg=job["gamma"],
             vn=self.vn,
             n_disk=self.n_disk,
+            roughness=self.roughness,
             wall_width=self.wall_width,
             contact_a=self.contact_a,
             n_wall=self.n_wall,
@@ -142,13 +217,22 @@ class Study:
         """Check the study, record it in its folder, and return its jobs."""
         self.validate()
         self.folder.mkdir(parents=True, exist_ok=True)
-        (self.folder / "study.json").write_text(json.dumps(asdict(self), indent=1))
+        # common_wall: every lattice meets the same wall (builder.scene.wall_spring_constant),
+        # which the results page reads; study.json files from before lack it
+        record = {**asdict(self), "common_wall": True}
+        path = self.folder / "study.json"
+        if path.exists():  # the whole study's time stays while its grid does
+            old = json.loads(path.read_text())
+            if "wall_clock" in old and Study.from_json(path).grid() == self.grid():
+                record["wall_clock"] = old["wall_clock"]
+        path.write_text(json.dumps(record, indent=1))
         jobs = self.jobs()
         if retry_failed:
             for job in jobs:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
         for job in jobs:
             set_aside_if_unreadable(job)
+            set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
         return jobs
 
     def build(self, job: dict) -> Path:
@@ -157,7 +241,7 @@ class Study:
         folder = Path(job["folder"])
         if folder.is_dir():
             for path in folder.iterdir():
-                if path.name != CORRUPT:
+                if path.name not in SET_ASIDE:
                     shutil.rmtree(path) if path.is_dir() else path.unlink()
         return write_scene(build_scene(self.spec(job)), folder, self.options.springs)
 
@@ -165,6 +249,113 @@ class Study:
         counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
         print(f"study {self.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
         return counts
+
+
+class EnvironmentFault(RuntimeError):
+    """Something every impact needs is missing: no impact is run or marked failed."""
+
+
+def check_environment(study: Study) -> None:
+    """The project's LAMMPS styles and every lattice's calibration, before any impact."""
+    for library, _ in STYLE_LIBRARIES.values():
+        path = LAMMPS_ROOT / "build" / library
+        if not path.is_file():
+            raise EnvironmentFault(f"{path} is missing: make setup builds it")
+    for lattice in study.lattices:
+        spec = study.spec({"lattice": lattice, "seed": study.first_seed, "gamma": 45.0})
+        try:
+            calibrated(spec.lattice, spec.k2_over_k1)
+        except (OSError, ValueError) as error:
+            raise EnvironmentFault(
+                f"calibration/materials.json cannot give {lattice}: {error} "
+                "(git checkout calibration/materials.json, or make calibrate)"
+            ) from None
+
+
+def study_from_args(args) -> Study:
+    """The study a `runner study` command names: the preset's, or, if its
+    folder holds a study, that study's study.json; the options given change
+    it. A study that exists is never changed silently: an option that differs
+    from its record is refused, but for --extend's more samples or lattices."""
+    from dataclasses import replace
+
+    name = args.name or args.preset
+    record = runs_folder() / name / "study.json"
+    existing = record.exists()
+    base = Study.from_json(record) if existing else PRESETS[args.preset]
+    base = replace(base, name=name)
+    changes = {
+        key: getattr(args, key)
+        for key in (
+            "samples",
+            "angles",
+            "vn",
+            "roughness",
+            "n_disk",
+            "wall_width",
+            "contact_a",
+            "n_wall",
+            "wall_ka",
+            "wall_fixed",
+        )
+        if getattr(args, key) is not None
+    }
+    for dest in ("lattices", "cot_gamma"):
+        values = getattr(args, dest) or []
+        if len(set(values)) != len(values):
+            raise InputError(
+                f"--{dest.replace('_', '-')} names a value twice: {' '.join(map(str, values))}"
+            )
+    if args.lattices:
+        changes["lattices"] = tuple(args.lattices)
+    if args.cot_gamma:
+        if args.angles is not None:
+            raise InputError("--angles and --cot-gamma: give one of them")
+        if len(args.cot_gamma) < ANGLES.low:
+            raise InputError(f"--cot-gamma must give at least {ANGLES.low:g} angles")
+        changes["cot_gamma"] = tuple(sorted(set(args.cot_gamma), reverse=True))
+        changes["angles"] = len(changes["cot_gamma"])
+    options = {
+        key: getattr(args, key) for key in ("dt", "max_drift") if getattr(args, key) is not None
+    }
+    if options:
+        changes["options"] = replace(base.options, **options)
+    study = replace(base, **changes)
+    if existing:
+        before, after = base.grid(), study.grid()
+        differ = [key for key in after if after[key] != before.get(key)]
+        grows = {
+            "samples": study.samples >= base.samples,
+            "lattices": set(base.lattices) <= set(study.lattices),
+        }
+        refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
+        if refused:
+            said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
+            hint = (
+                " (--extend adds samples or lattices)"
+                if set(refused) <= set(EXTENDABLE) and not args.extend
+                else ""
+            )
+            raise InputError(
+                f"--name {name}: {record.parent} holds a study with another grid: {said}; "
+                f"leave the option out to use the study's{hint}, or give another --name"
+            )
+    elif args.report_only:
+        raise InputError(f"--report-only: no study in {record.parent}; run it first")
+    elif args.extend:
+        raise InputError(f"--extend: no study in {record.parent} to extend")
+    study.validate()
+    if not args.report_only:
+        check_environment(study)
+        fast = [g for g in study.gammas() if speed_warning(study.vn, g)]
+        if fast:
+            print(
+                f"warning: at {len(fast)} angles from {fast[0]:g} degrees, "
+                f"{speed_warning(study.vn, fast[0])}",
+                file=sys.stderr,
+                flush=True,
+            )
+    return study
 
 
 def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) -> None:
@@ -221,10 +412,31 @@ def set_aside_if_unreadable(job: dict) -> None:
             )
 
 
+def set_aside_if_other_wall(job: dict, ka_wall: float) -> None:
+    """Move the result.json or failed.json of an impact whose wall had other
+    springs than ``ka_wall`` to the same name + .other-wall, so that the impact
+    runs again on the study's wall and no table mixes two walls."""
+    folder = Path(job["folder"])
+    scene = folder / "scene.json"
+    done = [folder / name for name in ("result.json", "failed.json") if (folder / name).exists()]
+    if not (done and scene.exists()):
+        return
+    recorded = json.loads(scene.read_text())["ka_wall"]
+    if not np.isclose(recorded, ka_wall, rtol=1e-12, atol=0.0):
+        for path in done:
+            path.replace(path.with_name(path.name + OTHER_WALL))
+        print(
+            f"warning: {folder}: its wall's ka {recorded:.6g} is not the study's {ka_wall:.6g}; "
+            f"{' and '.join(p.name for p in done)} moved aside (+{OTHER_WALL}), it runs again",
+            file=sys.stderr,
+            flush=True,
+        )
+
+
 def prune(folder: Path) -> None:
     """Keep only the small files of a finished impact."""
     for path in folder.iterdir():
-        if path.name not in KEEP and path.name != CORRUPT:
+        if path.name not in KEEP and path.name not in SET_ASIDE:
             path.unlink()
 
 

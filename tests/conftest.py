@@ -3,11 +3,17 @@ tests/helpers.py."""
 
 from __future__ import annotations
 
+import shutil
+
 import pytest
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
-from tests.helpers import SMALL
+from tests.helpers import RUNS, SMALL
+
+
+def pytest_sessionfinish(session, exitstatus):
+    shutil.rmtree(RUNS, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")

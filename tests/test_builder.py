@@ -167,11 +167,13 @@ def test_same_seed_same_files(tmp_path):
 @pytest.mark.parametrize(
     "field, value, words",
     [
-        ("radius", -1.0, "radius must be > 0"),
-        ("n_disk", -5, "n_disk must be an integer >= 50"),
-        ("gamma_deg", 90.0, "gamma_deg must be in [0, 90)"),
+        ("radius", -1.0, "radius must be a number in (0, 1000]"),
+        ("radius", float("inf"), "radius must be a number in (0, 1000]"),
+        ("n_disk", -5, "n_disk must be an integer in [50, 100000]"),
+        ("gamma_deg", 90.0, "gamma_deg must be a number in [0, 90)"),
+        ("gamma_deg", float("nan"), "gamma_deg must be a number in [0, 90)"),
         ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
-        ("vn", 1.5, "vn must be in (0, 1)"),
+        ("vn", 0.5, "vn must be a number in (0, 0.3]"),
         ("wall_fixed", "top", "wall_fixed must be one of"),
         ("contact_a", 50.0, "contact_a must be >= "),
     ],
@@ -186,10 +188,10 @@ def test_bad_spec(field, value, words):
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["--radius", "-1"], "argument --radius: must be > 0"),
-        (["--n-disk", "-5"], "argument --n-disk: must be an integer >= 50"),
-        (["--gamma", "0"], "argument --gamma: must be in (0, 90) degrees"),
-        (["--gamma", "95"], "argument --gamma: must be in (0, 90) degrees"),
+        (["--radius", "-1"], "argument --radius: must be a number in (0, 1000]"),
+        (["--n-disk", "-5"], "argument --n-disk: must be an integer in [50, 100000]"),
+        (["--gamma", "0"], "argument --gamma: must be a number in (0, 90)"),
+        (["--gamma", "95"], "argument --gamma: must be a number in (0, 90)"),
         (["--lattice", "hexagonal"], "argument --lattice: invalid choice"),
         (["--n-disk", "200", "--contact-a", "50"], "contact_a must be >= "),
     ],

@@ -12,23 +12,29 @@ from builder.errors import InputError
 from builder.materials import (
     TABLE,
     calibrated,
+    square_bulk_modulus,
     square_poisson_ratio,
     square_ratio_for_poisson,
+    square_shear_modulus,
     square_wave_speed_factor,
 )
 from builder.scene import SceneSpec, build_scene
 from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch
-from calibration.table import RANDOM_STRIP, stretch_all
-from tests.helpers import SMALL
+from calibration.table import RANDOM_STRIP, anisotropy, markdown, stretch_all
+from tests.helpers import ROOT, SMALL
 
 
-def test_triangular_lattice(tmp_path):
-    r = run_stretch(StripSpec("triangular"), tmp_path)
+@pytest.mark.parametrize("angle", [0.0, 45.0])
+def test_triangular_lattice(tmp_path, angle):
+    r = run_stretch(StripSpec("triangular", angle_deg=angle), tmp_path)
     assert abs(r.nu - 1.0 / 3.0) < 0.01
     assert r.e_modulus == pytest.approx(2.0 / np.sqrt(3.0), rel=0.02)
     assert r.c2 == pytest.approx(1.0, rel=0.02)  # c^2 = k d^2 / m
+    # isotropic: the Lame constants are both sqrt(3)/4 k, in every direction
+    assert r.shear_modulus == pytest.approx(np.sqrt(3.0) / 4.0, rel=0.01)
+    assert r.bulk_modulus == pytest.approx(np.sqrt(3.0) / 2.0, rel=0.01)
     assert r.nonlinearity < 0.01  # linear response
     assert r.imbalance < 1e-6  # settled: the grips balance
 
@@ -40,6 +46,41 @@ def test_square_lattice_against_the_formula(tmp_path, ratio, angle):
     assert abs(r.nu - square_poisson_ratio(ratio, angle)) < 0.01
     assert r.c2 == pytest.approx(square_wave_speed_factor(ratio, angle), rel=0.01)
     assert r.nonlinearity < 0.01
+    # the pull gives the shear modulus of the frame turned by 45 degrees more
+    assert r.shear_modulus == pytest.approx(square_shear_modulus(ratio, angle + 45.0), rel=0.01)
+    assert r.bulk_modulus == pytest.approx(square_bulk_modulus(ratio), rel=0.01)
+
+
+def rotated_shear_modulus(c11: float, c12: float, c66: float, angle_deg: float) -> float:
+    """1 / S'66 of the stiffness tensor turned by the angle, by tensor algebra."""
+    c = np.zeros((2, 2, 2, 2))
+    c[0, 0, 0, 0] = c[1, 1, 1, 1] = c11
+    c[0, 0, 1, 1] = c[1, 1, 0, 0] = c12
+    c[0, 1, 0, 1] = c[1, 0, 1, 0] = c[0, 1, 1, 0] = c[1, 0, 0, 1] = c66
+    a = np.radians(angle_deg)
+    q = np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+    turned = np.einsum("ia,jb,kc,ld,abcd->ijkl", q, q, q, q, c)
+    voigt = [(0, 0), (1, 1), (0, 1)]
+    matrix = np.array([[turned[w[0], w[1], v[0], v[1]] for v in voigt] for w in voigt])
+    return float(1.0 / np.linalg.inv(matrix)[2, 2])
+
+
+@pytest.mark.parametrize("ratio", [1.0 / 9.0, 3.0 / 7.0, 1.0])
+def test_square_moduli_closed_forms(ratio):
+    """G and B of the square lattice: known values, the stiffness tensor turned
+    by tensor algebra, and E / (2 (1 +- nu)) from MODEL.md's nu along the mirror lines."""
+    assert square_shear_modulus(ratio, 0.0) == pytest.approx(ratio, rel=1e-12)  # C66 = k2
+    assert square_shear_modulus(ratio, 45.0) == pytest.approx(0.5, rel=1e-12)  # k1 / 2
+    for angle in (0.0, 10.0, 22.5, 30.0, 45.0, 80.0):
+        assert square_shear_modulus(ratio, angle) == pytest.approx(
+            rotated_shear_modulus(1.0 + ratio, ratio, ratio, angle), rel=1e-12
+        )
+    for angle in (0.0, 45.0):
+        e, nu = square_wave_speed_factor(ratio, angle), square_poisson_ratio(ratio, angle)
+        assert square_shear_modulus(ratio, angle + 45.0) == pytest.approx(
+            e / (2.0 * (1.0 + nu)), rel=1e-12
+        )
+        assert square_bulk_modulus(ratio) == pytest.approx(e / (2.0 * (1.0 - nu)), rel=1e-12)
 
 
 def test_square_ratio_for_a_poisson_ratio():
@@ -96,3 +137,18 @@ def test_table_covers_the_study():
             nu, abs=0.01
         )
     assert calibrated("triangular")["samples"] == 1 and calibrated("random")["samples"] >= 10
+
+
+def test_the_materials_page_is_the_table_s():
+    """docs/materials.md shows materials.json's numbers, both tables, and every
+    lattice of the study in the moduli table, the regular ones pulled at 45 degrees."""
+    table = json.loads(TABLE.read_text())
+    assert markdown(table) in (ROOT / "docs" / "materials.md").read_text()
+    rows = {(r["lattice"], r["k2_over_k1"]): r for r in anisotropy(table["materials"])}
+    for nu in (0.1, 0.3):
+        row = rows[("square", square_ratio_for_poisson(nu))]
+        assert row["measured_45"]
+        assert row["G_axes"] == pytest.approx(square_ratio_for_poisson(nu), rel=0.01)
+    assert rows[("triangular", None)]["measured_45"]
+    random = rows[("random", None)]
+    assert not random["measured_45"] and random["G_axes"] == random["G_45"]

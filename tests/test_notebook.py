@@ -8,7 +8,7 @@ import os
 import matplotlib
 import numpy as np
 
-from tests.helpers import ROOT
+from tests.helpers import ROOT, RUNS
 
 
 def test_notebook_cells_run(monkeypatch, tmp_path):
@@ -30,4 +30,4 @@ def test_notebook_cells_run(monkeypatch, tmp_path):
     assert after.any() and abs(result["omega"]) > 1e-4
     assert abs(omega[after] - result["omega"]).max() < 1e-5 * (1 + abs(result["omega"]))
     assert namespace["table"] == table
-    assert os.path.exists(ROOT / "runs" / "notebook" / "dump.lammpstrj")
+    assert os.path.exists(RUNS / "notebook" / "dump.lammpstrj")

@@ -1,7 +1,8 @@
 """The study's tables: contacts that reached the wall's ends are counted and
-their angles left out of the fits that must not see them."""
+their angles left out of the fits that must not see them; failures grouped."""
 
-from analysis.report import clear_of_the_ends
+from analysis.estimates import clear_angles
+from analysis.seeds import seed_tables
 from analysis.table import mean_rows
 
 
@@ -38,9 +39,8 @@ def test_near_side_counts_and_clear_angles():
     )  # 2 of 10, one past the side: left out
     means = mean_rows(rows)
     assert {m["gamma_deg"]: m["near_side"] for m in means} == {30.0: 0, 70.0: 1, 80.0: 2}
-    kept = clear_of_the_ends(rows, means)
-    assert sorted({r["gamma_deg"] for r in kept}) == [30.0, 70.0]
-    assert len(kept) == 20
+    table = seed_tables(rows)["random"]
+    assert table.gamma_deg[clear_angles(table)].tolist() == [30.0, 70.0]
 
 
 def test_failures_are_grouped_by_cause_with_their_angles_and_seeds():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import json
 import os
 import re
 import shutil
@@ -16,7 +17,7 @@ import pytest
 
 from runner.pool import run_jobs
 from runner.study import Study, job_groups
-from tests.helpers import ROOT
+from tests.helpers import ROOT, RUNS
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
 COMPARED = (
@@ -46,14 +47,14 @@ def study(name: str, *extra: str, wait: bool = True):
 
 
 def table(name: str) -> list[tuple]:
-    with (ROOT / "runs" / name / "impacts.csv").open() as handle:
+    with (RUNS / name / "impacts.csv").open() as handle:
         return [tuple(row[c] for c in COMPARED) for row in csv.DictReader(handle)]
 
 
 @pytest.fixture(scope="module")
 def uninterrupted():
     name = "test_study_whole"
-    subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    subprocess.run(["rm", "-rf", str(RUNS / name)])
     proc = study(name)
     assert proc.returncode == 0, proc.stderr
     return table(name)
@@ -61,7 +62,7 @@ def uninterrupted():
 
 def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
     name = "test_study_killed"
-    folder = ROOT / "runs" / name
+    folder = RUNS / name
     subprocess.run(["rm", "-rf", str(folder)])
     proc = study(name, wait=False)
     deadline = time.monotonic() + 300
@@ -79,7 +80,7 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
 
 def test_two_partitions_give_the_serial_results(uninterrupted):
     name = "test_study_partitions"
-    subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    subprocess.run(["rm", "-rf", str(RUNS / name)])
     proc = study(name, "--partitions", "2", "--batch-size", "1")  # 3 MPI jobs, built ahead
     assert proc.returncode == 0, proc.stderr
     assert table(name) == uninterrupted
@@ -143,14 +144,14 @@ def test_job_groups_keep_every_worker_busy(samples, lattices, angles, per_group)
 
 def runs_listing() -> set[str]:
     """Everything under runs/ and beside it that a study could have written."""
-    return {str(p.relative_to(ROOT)) for p in (ROOT / "runs").glob("*")} | {
+    return {str(p.relative_to(RUNS)) for p in RUNS.glob("*")} | {
         p.name for p in ROOT.glob("escape*")
     }
 
 
 @pytest.mark.parametrize("name", ["my study", "", "../escape", ".", "a/b"])
 def test_a_bad_name_exits_2_and_writes_nothing(name):
-    (ROOT / "runs").mkdir(exist_ok=True)
+    (RUNS).mkdir(exist_ok=True)
     before = runs_listing()
     proc = study(name)
     assert proc.returncode == 2, proc.stdout + proc.stderr
@@ -163,7 +164,7 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     """On a 4 R wall (the first study's dense wall) the grazing impact slides
     off the end; the other finishes, and a tiny --max-drift flags it."""
     name = "test_study_failed"
-    subprocess.run(["rm", "-rf", str(ROOT / "runs" / name)])
+    subprocess.run(["rm", "-rf", str(RUNS / name)])
     command = [
         sys.executable,
         "-m",
@@ -196,10 +197,10 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     last = proc.stdout.strip().splitlines()[-1]
     assert re.match(
         r"1 impacts, 1 above --max-drift 1e-09, 1 failed \(1: the disk slid off the end "
-        r"of the wall before it rebounded\); results in runs/test_study_failed/results.md$",
+        r"of the wall before it rebounded\); results in \S*/test_study_failed/results.md$",
         last,
     ), last
-    page = (ROOT / "runs" / name / "results.md").read_text()
+    page = (RUNS / name / "results.md").read_text()
     assert (
         "| the disk slid off the end of the wall before it rebounded | 1 "
         "| random 80.5 deg: seed 1 |" in page
@@ -207,7 +208,7 @@ def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     assert "Made by `python -m runner study demo --name test_study_failed" in page
     assert "--max-drift 1e-09`" in page
     assert "1 of the 1 impacts have an energy drift" in page and "random 5.7106 deg: seed 1" in page
-    with (ROOT / "runs" / name / "impacts.csv").open() as handle:
+    with (RUNS / name / "impacts.csv").open() as handle:
         assert [row["drift_exceeded"] for row in csv.DictReader(handle)] == ["True"]
     # the report alone says the same and exits the same way
     again = subprocess.run(command + ["--report-only"], cwd=ROOT, capture_output=True, text=True)
@@ -255,7 +256,7 @@ def alive(pid: int) -> bool:
 )
 def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, worker):
     name = "test_study_signal"
-    folder = ROOT / "runs" / name
+    folder = RUNS / name
     subprocess.run(["rm", "-rf", str(folder)])
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY, *extra]
     # its own session, so that a failing test can still clean up the whole group
@@ -299,9 +300,9 @@ def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, work
 
 def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
     name = "test_study_corrupt"
-    folder = ROOT / "runs" / name
+    folder = RUNS / name
     subprocess.run(["rm", "-rf", str(folder)])
-    shutil.copytree(ROOT / "runs" / "test_study_whole", folder)
+    shutil.copytree(RUNS / "test_study_whole", folder)
     results = sorted(folder.glob("random/*/*/result.json"))
     truncated, empty = results[1], results[4]
     truncated.write_text('{"e": 0.3, "bet')
@@ -329,7 +330,7 @@ def test_the_page_comes_back_from_the_tables_alone(uninterrupted, tmp_path):
     failed.csv and study.json, with no run folder (docs/results/ for the paper)."""
     from analysis.report import report_from_tables
 
-    folder = ROOT / "runs" / "test_study_whole"
+    folder = RUNS / "test_study_whole"
     tables = tmp_path / "tables"
     tables.mkdir()
     for name in ("impacts.csv", "failed.csv", "study.json"):
@@ -341,3 +342,131 @@ def test_the_page_comes_back_from_the_tables_alone(uninterrupted, tmp_path):
     assert remade.replace(where, "") == (folder / "results.md").read_text()
     assert (tables / "means.csv").read_text() == (folder / "means.csv").read_text()
     assert (tables / "fits.json").read_text() == (folder / "fits.json").read_text()
+
+
+def docs_listing() -> dict[str, int]:
+    return {str(p): p.stat().st_mtime_ns for p in (ROOT / "docs").rglob("*")}
+
+
+def copy_of_whole(name: str) -> Path:
+    folder = RUNS / name
+    shutil.rmtree(folder, ignore_errors=True)
+    shutil.copytree(RUNS / "test_study_whole", folder)
+    return folder
+
+
+def report_only(name: str, *options: str):
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *options]
+    return subprocess.run(
+        [*command, "--report-only"], cwd=ROOT, capture_output=True, text=True, timeout=600
+    )
+
+
+def test_report_only_takes_the_grid_from_study_json(uninterrupted):
+    """The demo preset's grid is 16 angles x 4 samples; the study was made with
+    3 x 2: a report without options keeps its 6 rows and writes nothing into docs/."""
+    copy_of_whole("test_study_grid")
+    before = docs_listing()
+    proc = report_only("test_study_grid")
+    assert proc.returncode == 0, proc.stderr
+    assert table("test_study_grid") == uninterrupted
+    assert docs_listing() == before
+
+
+@pytest.mark.parametrize(
+    "options, words",
+    [
+        (["--angles", "4"], "angles 3 there, 4 asked"),
+        (["--samples", "3"], "samples 2 there, 3 asked; leave the option out"),
+        (["--extend"], "--extend does not apply to --report-only"),
+        (["--dt", "0.001"], "'dt': 0.001"),
+    ],
+)
+def test_another_grid_for_a_study_is_refused(uninterrupted, options, words):
+    folder = copy_of_whole("test_study_other_grid")
+    record = (folder / "study.json").read_text()
+    proc = report_only("test_study_other_grid", *options)
+    assert proc.returncode == 2, proc.stdout
+    assert len(proc.stderr.strip().splitlines()) == 1 and words in proc.stderr, proc.stderr
+    assert (folder / "study.json").read_text() == record
+    assert table("test_study_other_grid") == uninterrupted
+
+
+def test_extend_adds_samples_and_never_removes(uninterrupted):
+    copy_of_whole("test_study_extend")
+    fewer = study("test_study_extend", "--samples", "1", "--extend")
+    assert fewer.returncode == 2 and "samples 2 there, 1 asked" in fewer.stderr
+    more = study("test_study_extend", "--samples", "3", "--extend")
+    assert more.returncode == 0, more.stderr
+    assert "6 already done" in more.stdout
+    rows = table("test_study_extend")
+    assert len(rows) == 9 and set(uninterrupted) < set(rows)
+    assert (
+        "0 of the study's 3 samples" not in (RUNS / "test_study_extend" / "results.md").read_text()
+    )
+
+
+def test_a_result_with_nan_is_not_a_result(uninterrupted):
+    folder = copy_of_whole("test_study_nan")
+    result = sorted(folder.glob("random/*/*/result.json"))[2]
+    values = json.loads(result.read_text())
+    values["e"] = float("nan")
+    result.write_text(json.dumps(values))  # json writes NaN
+    proc = report_only("test_study_nan")
+    assert proc.returncode == 0, proc.stderr
+    assert str(result) in proc.stderr and "e not a finite number" in proc.stderr
+    rows = table("test_study_nan")
+    assert len(rows) == 5 and set(rows) < set(uninterrupted)
+    for name in ("impacts.csv", "means.csv", "fits.json"):
+        assert "nan" not in (folder / name).read_text().lower()
+
+
+def test_a_missing_plugin_stops_the_study_before_any_impact(monkeypatch, capsys):
+    """An environment fault is no impact's failure: one line naming the file
+    and the make target, exit 1, no impact folder."""
+    import runner.study
+    from runner.__main__ import main
+
+    monkeypatch.setitem(
+        runner.study.STYLE_LIBRARIES, ("pair", "polyline/exp"), ("libmissing.so", "register")
+    )
+    name = "test_study_no_plugin"
+    status = main(["study", "demo", "--name", name, *TINY])
+    err = capsys.readouterr().err.strip()
+    assert status == 1
+    assert len(err.splitlines()) == 1 and "build/libmissing.so is missing: make setup" in err
+    assert not (RUNS / name).exists()
+
+
+def committed_tables_copy(folder: Path) -> Path:
+    folder.mkdir(parents=True)
+    for name in ("impacts.csv", "failed.csv", "study.json"):
+        (folder / name).write_bytes((ROOT / "docs" / "results" / name).read_bytes())
+    return folder
+
+
+def test_tables_with_nan_make_no_page(tmp_path, capsys):
+    from runner.__main__ import main
+
+    tables = committed_tables_copy(tmp_path / "tables")
+    text = (tables / "impacts.csv").read_text().splitlines()
+    header, row = text[0].split(","), text[1].split(",")
+    row[header.index("beta")] = "nan"
+    (tables / "impacts.csv").write_text("\n".join([text[0], ",".join(row), *text[2:]]) + "\n")
+    status = main(["study", "paper", "--from-tables", str(tables), "--name", "test_nan_tables"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and len(err.splitlines()) == 1
+    assert "line 2: beta not a finite number" in err
+    assert not (RUNS / "test_nan_tables").exists()
+
+
+def test_tables_never_replace_another_study(uninterrupted, tmp_path, capsys):
+    from runner.__main__ import main
+
+    folder = copy_of_whole("test_study_target")
+    before = {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()}
+    tables = committed_tables_copy(tmp_path / "tables")
+    status = main(["study", "paper", "--from-tables", str(tables), "--name", "test_study_target"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and "holds a study" in err and len(err.splitlines()) == 1
+    assert {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()} == before
