@@ -78,6 +78,9 @@ def analyse_run(folder: Path | str) -> dict:
         "vn": spec["vn"],
         "dt": run["options"]["dt"],
         "integrator": run["options"]["integrator"],
+        # contact steps per step; before the respa of the contact's inner level
+        # (2026-11) respa meant the springs' inner level, and nrespa its steps
+        "nrespa": run["options"]["nrespa"] if run["options"]["integrator"] == "respa" else None,
         "contact": run["options"]["contact"],
         "e": rebound.e,
         "beta": rebound.beta,

@@ -63,6 +63,13 @@ def timer_seconds(log: Path) -> dict[str, float]:
     return total
 
 
+def file_at(revision: str, path: str) -> str:
+    """A file of the project as it was at a git revision (for before/after benchmarks)."""
+    return subprocess.run(
+        ["git", "show", f"{revision}:{path}"], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout
+
+
 def median(values) -> float:
     return statistics.median(values)
 

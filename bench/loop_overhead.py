@@ -1,26 +1,35 @@
 """Where a step of an impact goes: the springs, the contact, and the impact deck's extras.
 
-    python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1] [--docs]
+    python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
+                                  [--respa 0.004/2 0.01/5] [--before f233bf1] [--docs]
 
 On one scene of the default reading (MODEL.md section 8; random disk), the
-same number of steps S (those the impact takes) for:
+same time of the impact (the S steps it takes at the default dt) for:
 
-  (a) the springs only (bench/contact_cost.lmp, contact none);
+  (a) the springs only (bench/contact_cost.lmp, contact none), and the same
+      without fix nve (the atoms stay put: what fix nve, LAMMPS's Modify, costs);
   (b) the springs and the contact (contact segment), no outputs;
+  (b) the same with --before's decks/setup.lmp: the contact as a pair style of
+      its own, whose neighbour list holds every atom, not as a hybrid sub-style;
   (c) decks/impact.lmp exactly as the study runs it (its run options);
-  (d) (c) with one of its extras changed at a time.
+  (d) (c) with one of its extras changed at a time;
+  (e) (b) and (c) with rRESPA, the contact alone on the inner level, for each
+      split --respa OUTER/N (the springs at OUTER, the contact at OUTER / N).
 
 Every variant runs in its own LAMMPS instance through the lammps module, the
 variants interleaved and repeated; the table gives medians of the steps per
-second over the whole input (read_data, set-up, the loop and everything between
-the chunks: what an impact costs) and of the loop alone, LAMMPS's timer
-breakdown (summed over the chunks of (c)), and ratios to (b) from the same run.
+second and the impact's time per second over the whole input (read_data,
+set-up, the loop and everything between runs: what an impact costs) and of the
+loop alone, LAMMPS's timer breakdown, and ratios to (b) from the same run.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
+import re
+import subprocess
 import sys
 import tempfile
 import time
@@ -31,6 +40,7 @@ from common import (
     REPEATS,
     ROOT,
     bench_parser,
+    file_at,
     loop_seconds,
     markdown_table,
     median,
@@ -42,6 +52,7 @@ from builder.lammps_data import write_scene
 from builder.scene import ANGLE, SEED, SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import command_line
+from runner.options import DT, NRESPA
 from runner.study import PRESETS
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
@@ -65,7 +76,9 @@ def run_deck(deck: Path, variables: dict[str, str], log: Path) -> float:
     return seconds
 
 
-def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]:
+def variants(
+    folder: Path, steps: int, splits: list[tuple[float, int]], old_setup: Path, before: str
+) -> dict[str, tuple[Path, dict[str, str]]]:
     """Each variant's deck and variables."""
     options = PRESETS["paper"].options
     common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
@@ -75,9 +88,36 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         "dt": repr(options.dt),
         "springs": options.springs,
     }
+    respa = {}
+    for dt, nrespa in splits:
+        label = f"respa {nrespa} dt={dt:g}"
+        run = dataclasses.replace(options, integrator="respa", dt=dt, nrespa=nrespa)
+        respa[f"(e) {label}: springs + contact"] = (
+            BENCH_DECK,
+            {
+                **bench,
+                "steps": str(round(steps * options.dt / dt)),
+                "dt": repr(dt),
+                "integrator": "respa",
+                "nrespa": str(nrespa),
+                "contact": "segment",
+            },
+        )
+        respa[f"(e) {label}: impact deck"] = (
+            IMPACT_DECK,
+            {"scene": str(folder), "out": str(folder), **run.deck_variables(), "post": "yes"},
+        )
     return {
         "(a) springs only": (BENCH_DECK, {**bench, "contact": "none"}),
+        "(a) springs only, no fix nve (nothing moves)": (
+            BENCH_DECK,
+            {**bench, "contact": "none", "move": "no"},
+        ),
         "(b) springs + contact": (BENCH_DECK, {**bench, "contact": "segment"}),
+        f"(b) contact in a list of every atom ({before}'s setup)": (
+            BENCH_DECK,
+            {**bench, "contact": "segment", "setup": str(old_setup)},
+        ),
         "(c) impact deck, as the study": (IMPACT_DECK, common),
         f"(d) series every {5 * options.every_steps}, not {options.every_steps}": (
             IMPACT_DECK,
@@ -93,7 +133,40 @@ def variants(folder: Path, steps: int) -> dict[str, tuple[Path, dict[str, str]]]
         ),
         "(d) clearance stop rule, no Python": (IMPACT_DECK, {**common, "stop_rule": "clearance"}),
         "(d) neighbour lists by bin, not multi": (IMPACT_DECK, {**common, "neighbor_style": "bin"}),
+        "(d) rebuilds checked every 5 steps, not 1": (IMPACT_DECK, {**common, "neigh_every": "5"}),
+        **respa,
     }
+
+
+def respa_split(text: str) -> tuple[float, int]:
+    """--respa: OUTER/N, rRESPA's outer step (a dt) and contact steps per step (an nrespa)."""
+    outer, slash, n = text.partition("/")
+    if not slash:
+        raise argparse.ArgumentTypeError(f"must be OUTER/N, got {text!r}")
+    try:
+        return DT(outer), NRESPA(n)
+    except argparse.ArgumentTypeError as error:
+        raise argparse.ArgumentTypeError(
+            f"must be OUTER/N, OUTER {DT.describe()}, N {NRESPA.describe()}: {text!r} ({error})"
+        ) from None
+
+
+respa_split.__name__ = "OUTER/N"
+respa_split.bad_values = ("", "0.004", "0.004/0", "nan/2", "0.004/x", "1/2")  # test_bad_input
+
+
+def commit_name(text: str) -> str:
+    """--before: a commit of this repository (git rev-parse resolves it)."""
+    # the characters of a ref or revision, and no leading "-" that git would read as an option
+    plausible = re.fullmatch(r"[\w./~^@{}-]+", text) and not text.startswith("-")
+    verify = ["git", "rev-parse", "--verify", "--quiet", f"{text}^{{commit}}"]
+    if not plausible or subprocess.run(verify, cwd=ROOT, capture_output=True).returncode:
+        raise argparse.ArgumentTypeError(f"must name a commit of this repository, got {text!r}")
+    return text
+
+
+commit_name.__name__ = "commit"
+commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/test_bad_input.py
 
 
 def parser() -> argparse.ArgumentParser:
@@ -113,6 +186,20 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
     )
+    parser.add_argument(
+        "--respa",
+        type=respa_split,
+        nargs="*",
+        default=["0.004/2", "0.01/5"],  # texts, so that argparse checks them
+        help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N "
+        f"(OUTER {DT.describe()}, N {NRESPA.describe()}; default: 0.004/2 0.01/5)",
+    )
+    parser.add_argument(
+        "--before",
+        type=commit_name,
+        default="f233bf1",
+        help="the commit whose decks/setup.lmp the second (b) variant runs (default: f233bf1)",
+    )
     return parser
 
 
@@ -125,29 +212,45 @@ def main(argv: list[str] | None = None) -> int:
         folder = write_scene(scene, Path(tmp) / "scene", PRESETS["paper"].options.springs)
         # the impact's own number of steps, which every variant then runs
         steps = run_scene(folder, PRESETS["paper"].options)["steps"]
+        old_setup = Path(tmp) / "setup_before.lmp"
+        old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
+        chosen = variants(folder, steps, args.respa, old_setup, args.before)
         runs: dict[str, list[dict]] = {}
         for repeat in range(args.repeats):
-            for name, (deck, variables) in variants(folder, steps).items():
+            for name, (deck, variables) in chosen.items():
                 log = Path(tmp) / "log.lammps"
                 wall = run_deck(deck, variables, log)
                 done = loop_seconds(log)[1]
                 runs.setdefault(name, []).append(
-                    {"wall": wall, "steps": done, **timer_seconds(log)}
+                    {
+                        "wall": wall,
+                        "steps": done,
+                        "dt": float(variables["dt"]),
+                        **timer_seconds(log),
+                    }
                 )
                 print(f"repeat {repeat + 1} {name}: {done / wall:,.0f} steps/s", flush=True)
 
-    base = median(r["steps"] / r["wall"] for r in runs["(b) springs + contact"])
+    # ratios of the impact's time per second, repeat by repeat
+    base = runs["(b) springs + contact"]
     rows = []
     for name, results in runs.items():
         rate = median(r["steps"] / r["wall"] for r in results)
+        time_rate = median(r["steps"] * r["dt"] / r["wall"] for r in results)
+        ratio = median(
+            (r["steps"] * r["dt"] / r["wall"]) / (b["steps"] * b["dt"] / b["wall"])
+            for r, b in zip(results, base)
+        )
         loop_rate = median(r["steps"] / r["loop"] for r in results)
-        shares = {s: median(r[s] / r["loop"] for r in results) for s in SECTIONS}
+        shares = {s: median(r.get(s, 0.0) / r["loop"] for r in results) for s in SECTIONS}
         rows.append(
             [
                 name,
+                f"{results[0]['dt']:g}",
                 str(results[0]["steps"]),
                 f"{rate:,.0f}",
-                f"{rate / base:.2f}",
+                f"{time_rate:.1f}",
+                f"{ratio:.2f}",
                 f"{loop_rate:,.0f}",
                 *(f"{100 * shares[s]:.0f}" for s in SECTIONS),
             ]
@@ -158,16 +261,20 @@ def main(argv: list[str] | None = None) -> int:
         f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
         f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
         f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
-        f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each. "
+        f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each; the machine "
+        "is shared, so single runs vary by 20 % and more. "
         "**steps/s** over the whole input (read_data, set-up, loop, the work between "
-        "chunks); **vs (b)**: its ratio to (b) in this run; **loop steps/s**: inside "
-        "LAMMPS's run loops only; then LAMMPS's timer breakdown in percent of the loop "
-        "(summed over the chunks of the impact deck).\n\n"
+        "runs); **R/c per s**: the impact's time per second, the same; **vs (b)**: the "
+        "median of its ratio to (b) springs + contact over the repeats, by R/c per s; "
+        "**loop steps/s**: inside LAMMPS's run loops only; then LAMMPS's timer breakdown "
+        "in percent of the loop (summed over the runs of a deck).\n\n"
         + markdown_table(
             [
                 "variant",
+                "dt",
                 "steps",
                 "steps/s",
+                "R/c per s",
                 "vs (b)",
                 "loop steps/s",
                 *(f"{s} %" for s in SECTIONS),
@@ -179,6 +286,8 @@ def main(argv: list[str] | None = None) -> int:
     command = (
         f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
         + (f" --seed {args.seed}" if args.seed != 1 else "")
+        + f" --respa {' '.join(f'{dt:g}/{n}' for dt, n in args.respa)}"
+        + f" --before {args.before}"
         + (" --docs" if args.docs else "")
     )
     print(f"wrote {write_report('loop_overhead', 'Where a step goes', command, body, args.docs)}")

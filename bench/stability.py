@@ -2,7 +2,8 @@
 
     python bench/stability.py [--docs]        (make bench-study: with --docs)
 
-1. Time-step sweeps, velocity Verlet and rRESPA, until the run fails: rough
+1. Time-step sweeps, velocity Verlet and rRESPA (the contact alone on the
+   inner level at dt / RESPA_NRESPA; dt its outer step), until the run fails: rough
    random and square disks at the most grazing angle of the study (80.5
    degrees) at 0.1 c, and at 45 degrees at 0.1, 0.2, 0.3 and 0.5 c.
 2. The speeds at which the contact is resolved at the default integrator and
@@ -30,7 +31,7 @@ from builder.scene import SceneSpec, build_scene
 from reference.data import read_data
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
-from runner.options import RunOptions
+from runner.options import RESPA_NRESPA, RunOptions
 
 STEPS = (1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2, 2.4e-2, 3.2e-2)
 CASES = [
@@ -54,7 +55,10 @@ def sweep(tmp: Path) -> list[list[str]]:
         scene = build_scene(spec_for(lattice, gamma, vn))
         for label, make in (
             ("verlet", lambda dt: RunOptions(dt=dt)),
-            ("respa 2", lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=2)),
+            (
+                f"respa {RESPA_NRESPA} (contact at dt/{RESPA_NRESPA})",
+                lambda dt: RunOptions(dt=dt, integrator="respa", nrespa=RESPA_NRESPA),
+            ),
         ):
             last_good, failure = None, None
             for dt in STEPS:

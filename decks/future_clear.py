@@ -38,8 +38,15 @@ def wrapper(handle):
     return _wrappers[address]
 
 
-def future_clear(handle, cutoff, slack, vibration, first, last):
-    """1 if the disk, moving rigidly from now on, will never touch the wall."""
+def future_clear(handle, may_stop, cutoff, slack, vibration, first, last):
+    """1 if the disk, moving rigidly from now on, will never touch the wall.
+
+    The deck's fix halt evaluates this at every check; ``may_stop`` (it has
+    touched the wall, and no contact acts) is 0 through most of them, which
+    then cost no gathering of atoms.
+    """
+    if not may_stop:
+        return 0
     lmp = wrapper(handle)
     n = lmp.get_natoms()
     x = np.ctypeslib.as_array(lmp.gather_atoms("x", 1, 3)).reshape(n, 3)[:, :2]

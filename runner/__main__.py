@@ -89,7 +89,8 @@ def add_run_arguments(parser) -> None:
         "--nrespa",
         type=NRESPA,
         default=None,
-        help=f"respa: spring steps per step (springs on the inner level), {NRESPA.describe()}",
+        help=f"respa: contact steps per step of --dt (the contact alone on the inner "
+        f"level), {NRESPA.describe()} (default: {defaults.nrespa})",
     )
     group.add_argument(
         "--contact",

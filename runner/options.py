@@ -14,11 +14,15 @@ CONTACTS = ("segment", "pair")
 RULES = ("lever", "gradient")
 SPRINGS = SPRING_STYLES
 ROUTES = ("lmp", "python")
-MAX_CHUNK_TIME = 2.0  # R/c; the shortest contacts last about 9
+MAX_CHUNK_TIME = 2.0  # R/c between checks at most; the shortest contacts last about 9
 # Rows of series.dat and checks for the end are spaced in time, so that a
 # change of dt keeps what they resolve and what they cost per R/c.
 SERIES_INTERVAL = 0.08  # R/c between rows of series.dat
 CHECK_INTERVAL = 0.8  # R/c between checks whether the impact is over
+# rRESPA's split (the outer step, the contact's steps per step) that make bench
+# picks by the default's criteria (docs/benchmarks/time_vs_error.md); not the
+# default integrator until a whole study has been checked against Verlet's.
+RESPA_DT, RESPA_NRESPA = 0.004, 2
 # The ranges of the run's numbers, for RunOptions.validate and the command
 # line alike. No scene runs above dt 0.032 (docs/benchmarks/stability.md).
 DT = Range(1e-5, 0.05, unit="R/c")
@@ -32,9 +36,11 @@ DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
 
 @dataclass
 class RunOptions:
-    dt: float = 0.002  # time step, R / c (docs/benchmarks/time_vs_error.md)
+    dt: float = 0.002  # time step, R / c (docs/benchmarks/time_vs_error.md); respa: the outer one
+    # verlet: velocity Verlet, everything at dt; respa: rRESPA, the springs at dt
+    # and the contact alone on the inner level at dt / nrespa (decks/setup.lmp)
     integrator: str = "verlet"
-    nrespa: int = 2  # respa: spring steps per step
+    nrespa: int = RESPA_NRESPA  # respa: contact steps per step of dt
     contact: str = "segment"  # segment: the paper's contact; pair: the design card
     rule: str = "lever"  # segment contact: lever rule or explicit gradient
     springs: str = DEFAULT_SPRINGS  # harmonic/quartic or class2: the model's quartic springs;
@@ -72,13 +78,13 @@ class RunOptions:
                 f"{self.dt:g}; give a larger dt or a smaller tmax"
             )
         every, check = self.every_steps, self.check_steps
-        # the deck learns that the disk has touched from the contact energy at the
-        # ends of its chunks: a chunk longer than a contact (9 R/c and more) could
-        # hold it whole, and the run would never stop
+        # the deck learns that the disk has touched from the contact energy at its
+        # checks: checks farther apart than a contact lasts (9 R/c and more)
+        # could miss it whole, and the run would never stop
         if check * self.dt > MAX_CHUNK_TIME:
             raise InputError(
-                f"check * dt must be at most {MAX_CHUNK_TIME:g} R/c (a chunk shorter "
-                f"than any contact), got {check} * {self.dt:g} = "
+                f"check * dt must be at most {MAX_CHUNK_TIME:g} R/c (checks closer "
+                f"than any contact lasts), got {check} * {self.dt:g} = "
                 f"{check * self.dt:g}; give a smaller check"
             )
         if check % every:

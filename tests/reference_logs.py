@@ -102,7 +102,7 @@ def thermo_rows(log: Path) -> np.ndarray:
     numpy.ndarray
         One row per thermo line (all runs of the log, headers left out), one
         column per thermo keyword that every table of the log has (the deck
-        switches to fewer columns during its chunks; the first five, step,
+        switches to fewer columns during its run; the first five, step,
         time, ke, pe and the contact's energy, are in all).
     """
     rows, inside = [], False

@@ -6,7 +6,9 @@ Smooth surfaces, where e and beta of one impact converge: LAMMPS's defaults
 against the reference's converged fourth-order run, within 1e-3. Rough
 surfaces, where they do not (chaos, docs/validation.md): LAMMPS against the
 reference's velocity Verlet at the same step, the same algorithm on
-independently written forces.
+independently written forces. rRESPA's split (the contact alone on the
+inner level, runner.options.RESPA_DT and RESPA_NRESPA) against the same
+converged reference, to the same 1e-3.
 """
 
 from __future__ import annotations
@@ -15,22 +17,35 @@ import pytest
 
 from reference.run import ReferenceOptions
 from reference.validate import compare, reference_runs, scenes
-from runner.options import RunOptions
+from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
 
 DEFAULTS = RunOptions()
+RESPA = RunOptions(integrator="respa", dt=RESPA_DT, nrespa=RESPA_NRESPA)
 
 
 @pytest.fixture(scope="module")
-def smooth(tmp_path_factory):
+def smooth_references(tmp_path_factory):
     out = tmp_path_factory.mktemp("smooth")
     specs = scenes(n_disk=200, roughness=0.0)
-    references = reference_runs(specs, out)
+    return out, specs, reference_runs(specs, out)
+
+
+def compare_smooth(smooth_references, options: RunOptions, label: str) -> dict[str, dict]:
+    out, specs, references = smooth_references
     return {
-        name: compare(
-            spec, out / name / "lammps", DEFAULTS, references[name], out / name / "reference"
-        )
+        name: compare(spec, out / name / label, options, references[name], out / name / "reference")
         for name, spec in specs.items()
     }
+
+
+@pytest.fixture(scope="module")
+def smooth(smooth_references):
+    return compare_smooth(smooth_references, DEFAULTS, "lammps")
+
+
+@pytest.fixture(scope="module")
+def smooth_respa(smooth_references):
+    return compare_smooth(smooth_references, RESPA, "lammps_respa")
 
 
 @pytest.fixture(scope="module")
@@ -51,6 +66,12 @@ def rough(tmp_path_factory):
 def test_default_settings_agree_with_the_converged_reference(smooth, name):
     assert abs(smooth[name]["de"]) < 1e-3
     assert abs(smooth[name]["dbeta"]) < 1e-3
+
+
+@pytest.mark.parametrize("name", list(scenes(n_disk=200)))
+def test_respa_agrees_with_the_converged_reference(smooth_respa, name):
+    assert abs(smooth_respa[name]["de"]) < 1e-3
+    assert abs(smooth_respa[name]["dbeta"]) < 1e-3
 
 
 @pytest.mark.parametrize("name", list(scenes(n_disk=200)))
