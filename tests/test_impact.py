@@ -184,11 +184,11 @@ def runner_cli(*args, cwd=ROOT):
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["impact", "--radius", "-1"], "argument --radius: must be > 0"),
-        (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer >= 50"),
-        (["impact", "--gamma", "90"], "argument --gamma: must be in (0, 90) degrees"),
+        (["impact", "--radius", "-1"], "argument --radius: must be a number in [0.001, 1000]"),
+        (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer in [50, 100000]"),
+        (["impact", "--gamma", "90"], "argument --gamma: must be a number in (0, 90)"),
         (["impact", "--lattice", "hexagonal"], "argument --lattice: invalid choice"),
-        (["impact", "--dt", "-0.001"], "argument --dt: must be > 0"),
+        (["impact", "--dt", "-0.001"], "argument --dt: must be a number in [1e-05, 0.05]"),
     ],
 )
 def test_runner_cli_rejects_bad_input(tmp_path, args, words):
@@ -202,18 +202,19 @@ def test_runner_cli_rejects_bad_input(tmp_path, args, words):
 def test_missing_data_file(tmp_path):
     proc = runner_cli("run", str(tmp_path / "nowhere"))
     assert proc.returncode == 2
-    assert "scene: no scene.data" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert "argument scene: must be an existing folder" in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "nowhere").exists()
 
 
 def test_unstable_run_stops_without_a_result(small_scene_dir, tmp_path):
     folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path / "unstable")
     with pytest.raises(LammpsError, match="unstable|inside the wall"):
-        run_scene(folder, RunOptions(dt=0.1, check=20))
+        run_scene(folder, RunOptions(dt=0.05, check=20))
     assert not (folder / "result.json").exists()
     # from the command line checks farther apart than a contact lasts
     # are refused before the run
-    proc = runner_cli("run", str(folder), "--dt", "0.1", "--check", "100")
+    proc = runner_cli("run", str(folder), "--dt", "0.05", "--check", "100")
     assert proc.returncode == 2 and "check * dt must be at most 2 R/c" in proc.stderr
     assert "give a smaller check" in proc.stderr
     assert not (folder / "result.json").exists()
@@ -323,7 +324,7 @@ def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
 def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
     out = tmp_path / "my run"
     proc = runner_cli("impact", "--n-disk", "200", "--out", str(out))
-    assert proc.returncode == 2 and "must not contain spaces" in proc.stderr
+    assert proc.returncode == 2 and "must not contain whitespace" in proc.stderr
     assert not out.exists()
 
 
@@ -332,7 +333,7 @@ def test_a_folder_with_spaces_is_refused_before_anything_is_written(tmp_path):
     [
         ({"check": 2000}, "check * dt must be at most 2 R/c"),
         ({"check": 30, "every": 25}, "check must be a multiple of every (25)"),
-        ({"dt": -1.0}, "dt must be > 0"),
+        ({"dt": -1.0}, "dt must be a number in [1e-05, 0.05]"),
     ],
 )
 def test_bad_run_options_are_refused(changes, words):
@@ -340,7 +341,7 @@ def test_bad_run_options_are_refused(changes, words):
         RunOptions(**changes).validate()
 
 
-@pytest.mark.parametrize("dt", [1e-4, 1e-3, 2e-3, 3e-3, 8e-3, 0.02, 0.05, 0.3])
+@pytest.mark.parametrize("dt", [1e-4, 1e-3, 2e-3, 3e-3, 8e-3, 0.02, 0.05])
 def test_rows_and_checks_keep_their_spacing_in_time_at_any_step(dt):
     """Left at 0, every and check follow dt: rows 0.08 R/c apart and checks
     the multiple of every nearest 0.8 R/c, so any valid dt runs without
