@@ -55,6 +55,9 @@ CONTACT_A = Range(1.0, 10_000.0, unit="a R")
 # wall, or 0.5 c at 45 degrees, disk points go into the wall.
 VN = Range(0.0, 0.3, low_open=True, unit="units of c")
 MAX_TANGENTIAL_SPEED = 0.6  # c
+# What a scene itself may be given: below the wave speed. bench/stability.py
+# builds scenes up to 0.5 c to find where runs fail; the command line takes VN.
+SUBSONIC = Range(0.0, 1.0, low_open=True, high_open=True, unit="units of c")
 GAMMA = Range(0.0, 90.0, high_open=True, unit="degrees")  # in code, 0 (head-on) too
 KB_OVER_KA = Range(0.0, 1.0)
 WALL_HEIGHT = Range(0.5, 100.0, unit="R")
@@ -149,7 +152,7 @@ class SceneSpec:
         require_choice("lattice", self.lattice, bodies.LATTICES)
         SEED.check("seed", self.seed)
         GAMMA.check("gamma_deg", self.gamma_deg)
-        VN.check("vn", self.vn)
+        SUBSONIC.check("vn", self.vn)
         RADIUS.check("radius", self.radius)
         N_DISK.check("n_disk", self.n_disk)
         if self.n_wall != WALL_DENSITY and not N_WALL.contains(self.n_wall):

@@ -173,7 +173,7 @@ def test_same_seed_same_files(tmp_path):
         ("gamma_deg", 90.0, "gamma_deg must be a number in [0, 90)"),
         ("gamma_deg", float("nan"), "gamma_deg must be a number in [0, 90)"),
         ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
-        ("vn", 0.5, "vn must be a number in (0, 0.3]"),
+        ("vn", 1.5, "vn must be a number in (0, 1)"),
         ("wall_fixed", "top", "wall_fixed must be one of"),
         ("contact_a", 50.0, "contact_a must be >= "),
     ],
