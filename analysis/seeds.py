@@ -17,18 +17,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .table import AVERAGED
+
 # The quantities of impacts.csv that are averaged per lattice and angle.
-QUANTITIES = (
-    "cot_gamma",
-    "e",
-    "beta",
-    "omega",
-    "contact_time",
-    "vibration_disk",
-    "vibration_wall",
-    "disk_inertia_ratio",
-    "side_clearance",
-)
+QUANTITIES = (*AVERAGED, "side_clearance")
 # The generator of the resamples: a fixed seed, so that a page is made again
 # with the same errors.
 RNG_SEED = 0

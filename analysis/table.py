@@ -50,6 +50,18 @@ COLUMNS = (
 )
 # The columns of means.csv. "*_seed_sd": the error of the mean, the standard
 # deviation over resamples of whole seeds (analysis.seeds).
+# The quantities of impacts.csv averaged per lattice and angle (means.csv, and
+# the seed bootstrap's, analysis/seeds.py, which adds side_clearance).
+AVERAGED = (
+    "cot_gamma",
+    "e",
+    "beta",
+    "omega",
+    "contact_time",
+    "vibration_disk",
+    "vibration_wall",
+    "disk_inertia_ratio",
+)
 MEAN_COLUMNS = (
     "study_lattice",
     "gamma_deg",
@@ -182,16 +194,7 @@ def mean_rows(rows: list[dict], errors: dict | None = None) -> list[dict]:
     out = []
     for (lattice, gamma), group in sorted(groups.items()):
         mean = {"study_lattice": lattice, "gamma_deg": gamma, "samples": len(group)}
-        for name in (
-            "cot_gamma",
-            "e",
-            "beta",
-            "omega",
-            "contact_time",
-            "vibration_disk",
-            "vibration_wall",
-            "disk_inertia_ratio",
-        ):
+        for name in AVERAGED:
             mean[name] = float(np.mean([float(r[name]) for r in group]))
         mean["near_side"] = sum(float(r["side_clearance"]) < NEAR_SIDE for r in group)
         mean.update((errors or {}).get((lattice, gamma), {}))

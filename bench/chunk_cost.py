@@ -29,8 +29,9 @@ import tempfile
 from pathlib import Path
 
 from common import (
-    REPEATS,
     ROOT,
+    add_repeats,
+    add_scene_pick,
     bench_parser,
     file_at,
     loop_seconds,
@@ -43,7 +44,7 @@ from loop_overhead import commit_name, respa_split, run_deck
 
 from builder.errors import InputError
 from builder.lammps_data import write_scene
-from builder.scene import ANGLE, SEED, SceneSpec, build_scene
+from builder.scene import SceneSpec, build_scene
 from runner.options import DT, NRESPA, RunOptions
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
@@ -70,21 +71,8 @@ def chunked_deck(revision: str, folder: Path) -> Path:
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=7,
-        help=f"runs of each, {REPEATS.describe()} (default: 7)",
-    )
-    parser.add_argument(
-        "--gamma",
-        type=ANGLE,
-        default=30.0,
-        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
-    )
-    parser.add_argument(
-        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
-    )
+    add_repeats(parser, 7, "runs of each")
+    add_scene_pick(parser)
     parser.add_argument(
         "--before",
         type=commit_name,

@@ -110,6 +110,31 @@ def distinct(option: str, values: list) -> list:
     return values
 
 
+def add_repeats(parser, default: int, what: str) -> None:
+    """--repeats: how many times each configuration runs (``what`` says it)."""
+    parser.add_argument(
+        "--repeats",
+        type=REPEATS,
+        default=default,
+        help=f"{what}, {REPEATS.describe()} (default: {default})",
+    )
+
+
+def add_scene_pick(parser) -> None:
+    """--gamma and --seed: which default-scene impact a timing benchmark runs."""
+    from builder.scene import ANGLE, SEED
+
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=30.0,
+        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
+    )
+    parser.add_argument(
+        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
+    )
+
+
 def output_folder(docs: bool) -> Path:
     """docs/benchmarks/ if asked, else runs/bench/ (created)."""
     folder = DOCS if docs else require_out_folder("the benchmarks' folder", RUNS)

@@ -22,10 +22,10 @@ from pathlib import Path
 
 from common import (
     BENCH_DECK,
-    REPEATS,
     ROOT,
     SEED_COUNT,
     TIMED_STEPS,
+    add_repeats,
     bench_parser,
     markdown_table,
     median,
@@ -114,12 +114,7 @@ def restitution_table(tmp: Path, seeds: int) -> str:
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=5,
-        help=f"timed runs of each contact, {REPEATS.describe()} (default: 5)",
-    )
+    add_repeats(parser, 5, "timed runs of each contact")
     parser.add_argument(
         "--steps",
         type=TIMED_STEPS,

@@ -15,7 +15,14 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import REPEATS, bench_parser, loop_seconds, markdown_table, median, write_report
+from common import (
+    add_repeats,
+    bench_parser,
+    loop_seconds,
+    markdown_table,
+    median,
+    write_report,
+)
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
@@ -25,12 +32,7 @@ from runner.options import RunOptions
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=3,
-        help=f"runs of each configuration, {REPEATS.describe()} (default: 3)",
-    )
+    add_repeats(parser, 3, "runs of each configuration")
     return parser
 
 

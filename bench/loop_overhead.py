@@ -37,8 +37,9 @@ from pathlib import Path
 
 from common import (
     BENCH_DECK,
-    REPEATS,
     ROOT,
+    add_repeats,
+    add_scene_pick,
     bench_parser,
     file_at,
     loop_seconds,
@@ -49,7 +50,7 @@ from common import (
 )
 
 from builder.lammps_data import write_scene
-from builder.scene import ANGLE, SEED, SceneSpec, build_scene
+from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import command_line
 from runner.options import DT, NRESPA
@@ -171,21 +172,8 @@ commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/test_bad_i
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=5,
-        help=f"runs of every variant, {REPEATS.describe()} (default: 5)",
-    )
-    parser.add_argument(
-        "--gamma",
-        type=ANGLE,
-        default=30.0,
-        help=f"incidence angle, {ANGLE.describe()} (default: 30)",
-    )
-    parser.add_argument(
-        "--seed", type=SEED, default=1, help=f"sample seed, {SEED.describe()} (default: 1)"
-    )
+    add_repeats(parser, 5, "runs of every variant")
+    add_scene_pick(parser)
     parser.add_argument(
         "--respa",
         type=respa_split,

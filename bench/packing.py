@@ -25,9 +25,9 @@ from pathlib import Path
 
 from common import (
     BENCH_DECK,
-    REPEATS,
     ROOT,
     TIMED_STEPS,
+    add_repeats,
     bench_parser,
     markdown_table,
     median,
@@ -77,12 +77,7 @@ def measure(scene: Path, way: tuple[str, int, int, int], steps: int, tmp: Path) 
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=3,
-        help=f"interleaved repeats of every way, {REPEATS.describe()} (default: 3)",
-    )
+    add_repeats(parser, 3, "interleaved repeats of every way")
     parser.add_argument(
         "--steps",
         type=TIMED_STEPS,

@@ -27,9 +27,9 @@ from pathlib import Path
 from common import (
     BENCH_DECK,
     DOCS,
-    REPEATS,
     ROOT,
     TIMED_STEPS,
+    add_repeats,
     bench_parser,
     machine,
     markdown_table,
@@ -117,12 +117,7 @@ def write_table(body: str, command: str, docs: bool) -> Path:
 
 def parser() -> argparse.ArgumentParser:
     parser = bench_parser(__file__, __doc__)
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=7,
-        help=f"runs of each style per scene, {REPEATS.describe()} (default: 7)",
-    )
+    add_repeats(parser, 7, "runs of each style per scene")
     parser.add_argument(
         "--steps",
         type=TIMED_STEPS,

@@ -19,7 +19,7 @@ import subprocess
 import sys
 import time
 
-from common import REPEATS, ROOT, bench_parser, markdown_table, median, write_report
+from common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
 
 from runner.study import ANGLES, SAMPLES, runs_folder
 
@@ -67,12 +67,7 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--angles", type=ANGLES, default=8, help=f"angles, {ANGLES.describe()} (default: 8)"
     )
-    parser.add_argument(
-        "--repeats",
-        type=REPEATS,
-        default=2,
-        help=f"runs of every way, {REPEATS.describe()} (default: 2)",
-    )
+    add_repeats(parser, 2, "runs of every way")
     return parser
 
 
