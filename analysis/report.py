@@ -151,10 +151,25 @@ def wall_clock(study: dict) -> str:
     clock = study.get("wall_clock")
     if not clock:
         return ""
+    spent = clock.get("worker_seconds")
+    split = ""
+    if spent:
+        total = sum(spent.values()) or 1.0
+        split = "; its workers spent " + ", ".join(
+            f"{100 * s / total:.0f} % in {WORKER_PHASE_NAMES[k]}" for k, s in spent.items()
+        )
     return (
         f"; the whole study took {clock['seconds'] / 60:.1f} min of wall-clock time with "
-        f"{clock['workers']} workers on {clock['cores']} cores ({clock['cpu']})"
+        f"{clock['workers']} workers on {clock['cores']} cores ({clock['cpu']}){split}"
     )
+
+
+# runner.study.WORKER_PHASES, as the results page names them
+WORKER_PHASE_NAMES = {
+    "build": "building scenes",
+    "lammps": "LAMMPS",
+    "rest": "analysis and files",
+}
 
 
 def results_page(

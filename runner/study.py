@@ -370,6 +370,10 @@ def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) 
             "cpu": cpu_name(),
             "cores": os.cpu_count(),
         }
+        if "worker_seconds" in counts:
+            info["wall_clock"]["worker_seconds"] = {
+                k: round(v, 1) for k, v in counts["worker_seconds"].items()
+            }
         path.write_text(json.dumps(info, indent=1))
 
 
@@ -450,11 +454,50 @@ def mark_failed(job: dict, message: str) -> None:
 
 
 def run_job(study: Study, job: dict) -> dict:
-    """Build and run one impact, keep only the small files; a worker calls this."""
+    """Build and run one impact, keep only the small files; a worker calls this.
+    Returns its e, beta and steps, and where its time went (WORKER_PHASES)."""
+    start = time.perf_counter()
     folder = study.build(job)
+    built = time.perf_counter()
     result = run_scene(folder, study.options)
     prune(folder)
-    return {"e": result["e"], "beta": result["beta"], "steps": result["steps"]}
+    total = time.perf_counter() - start
+    lammps = json.loads((folder / "run.json").read_text())["wall_seconds"]
+    return {
+        "e": result["e"],
+        "beta": result["beta"],
+        "steps": result["steps"],
+        "build": built - start,
+        "lammps": lammps,
+        "rest": total - (built - start) - lammps,
+    }
+
+
+# Where a worker's time goes, summed over a study's impacts: building the
+# scene (bodies, data file), LAMMPS (its instance, read_data, the run), the
+# rest (analysis, result files).
+WORKER_PHASES = ("build", "lammps", "rest")
+
+
+class WorkerTime:
+    """The seconds of WORKER_PHASES summed over the impacts a study ran."""
+
+    def __init__(self) -> None:
+        self.seconds = dict.fromkeys(WORKER_PHASES, 0.0)
+        self.steps = 0
+
+    def add(self, value: dict) -> None:
+        for phase in WORKER_PHASES:
+            self.seconds[phase] += value[phase]
+        self.steps += value["steps"]
+
+    def line(self) -> str:
+        total = sum(self.seconds.values()) or 1.0
+        parts = ", ".join(
+            f"{phase} {s:.0f} s ({100 * s / total:.0f} %)" for phase, s in self.seconds.items()
+        )
+        rate = self.steps / self.seconds["lammps"] if self.seconds["lammps"] else 0.0
+        return f"workers' time: {parts}; LAMMPS {rate:,.0f} steps per second per worker"
 
 
 class Progress:
@@ -527,14 +570,16 @@ def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dic
         job = todo[index]
         mark_failed(job, lammps_error(Path(job["folder"]) / "log.lammps", message))
 
+    spent = WorkerTime()
     if todo:
         run_jobs(
             lambda job: run_job(study, job),
             todo,
             groups,
             workers,
-            on_done=lambda i, v: None,
+            on_done=lambda i, value: spent.add(value),
             on_failed=failed,
             on_progress=progress,
         )
-    return {**study.summary(jobs), "ran": len(todo)}
+        print(spent.line(), flush=True)
+    return {**study.summary(jobs), "ran": len(todo), "worker_seconds": spent.seconds}

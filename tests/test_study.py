@@ -60,6 +60,19 @@ def uninterrupted():
     return table(name)
 
 
+def test_a_whole_study_records_where_its_workers_time_went(uninterrupted):
+    clock = json.loads((RUNS / "test_study_whole" / "study.json").read_text())["wall_clock"]
+    spent = clock["worker_seconds"]
+    assert set(spent) == {"build", "lammps", "rest"}
+    # LAMMPS's share is the sum of the impacts' own records, not a guess
+    runs = (RUNS / "test_study_whole").glob("random/*/*/run.json")
+    lammps = sum(json.loads(path.read_text())["wall_seconds"] for path in runs)
+    assert spent["lammps"] == pytest.approx(lammps, abs=0.1)
+    assert spent["build"] > 0 and spent["rest"] >= 0
+    # two workers cannot spend more than twice the study's wall-clock time
+    assert sum(spent.values()) <= 2 * clock["seconds"] + 0.5
+
+
 def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
     name = "test_study_killed"
     folder = RUNS / name
