@@ -10,13 +10,14 @@ from collections import Counter
 from pathlib import Path
 
 from builder.errors import InputError
+from builder.scene import MODEL_READINGS
 
 from . import figures
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
 from .result import FINITE, MAX_DRIFT
-from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, write_csv
+from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, with_model_readings, write_csv
 
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
 
@@ -146,6 +147,15 @@ def wall_options(study: dict) -> str:
     )
 
 
+def model_options(study: dict) -> str:
+    """The readings of the model as runner study's options (studies from before
+    they were options had the first choices)."""
+    return " ".join(
+        f"--{name.replace('_', '-')} {study.get(name, choices[0])}"
+        for name, choices in MODEL_READINGS.items()
+    )
+
+
 def wall_clock(study: dict) -> str:
     """How long the whole study took, where study.json records it."""
     clock = study.get("wall_clock")
@@ -217,6 +227,7 @@ def results_page(
         f"--vn {study.get('vn', 0.1):g} --roughness {study.get('roughness', 0.03):g} "
         f"--n-disk {study['n_disk']} --wall-width {study.get('wall_width', 8.0):g} "
         f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
+        f"{model_options(study)} "
         f"--dt {study['options']['dt']:g} "
         f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}`.",
         "",
@@ -348,6 +359,7 @@ def report_from_tables(
     try:
         info = json.loads((tables / "study.json").read_text())
         rows, failed = read("impacts.csv"), read("failed.csv")
+        rows = [with_model_readings(row) for row in rows]
         for line, row in enumerate(rows, start=2):
             bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
             if bad:

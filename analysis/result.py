@@ -8,6 +8,8 @@ import os
 import tempfile
 from pathlib import Path
 
+from builder.scene import MODEL_READINGS
+
 from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
 from .series import read_energies, read_series
 
@@ -103,6 +105,9 @@ def analyse_run(folder: Path | str) -> dict:
         "n_wall": spec["n_wall"],
         "wall_ka": spec["wall_ka"],
         "wall_fixed": spec["wall_fixed"],
+        # the readings of the model; scenes from before they were options had the first
+        **{name: spec.get(name, choices[0]) for name, choices in MODEL_READINGS.items()},
+        "vn_in_c": spec["vn"] * scene["units"].get("vn_unit", 1.0),
         "wall_spacing": scene["wall_spacing"],
         "ka_wall_over_disk": scene["ka_wall"] / scene["ka_disk"],
         "ka_wall": scene["ka_wall"],

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+from builder.scene import MODEL_READINGS
+
 from .result import MAX_DRIFT, UnreadableResult, read_result
 
 # The columns of impacts.csv, in order; every result.json has them.
@@ -33,6 +35,12 @@ COLUMNS = (
     "n_wall",
     "wall_ka",
     "wall_fixed",
+    "contact_mass",
+    "speed_unit",
+    "roughness_direction",
+    "surface_row",
+    "regular_surface",
+    "vn_in_c",
     "n_wall_points",
     "ka_wall_over_disk",
     "ka_wall",
@@ -107,6 +115,17 @@ def near_the_ends(mean: dict) -> bool:
     return mean["near_side"] > NEAR_SIDE_SHARE * mean["samples"]
 
 
+def with_model_readings(values: dict) -> dict:
+    """``values`` (a result or a table's row) with the readings of the model
+    filled in where it predates them: those were the first choices."""
+    for name, choices in MODEL_READINGS.items():
+        if values.get(name) in (None, ""):
+            values[name] = choices[0]
+    if values.get("vn_in_c") in (None, ""):
+        values["vn_in_c"] = values["vn"]
+    return values
+
+
 def row(result: dict, study_lattice: str) -> dict:
     """The table's row for one result.json."""
     values = dict(result, study_lattice=study_lattice)
@@ -167,7 +186,7 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 values["ka_wall"] = json.loads(scene_file.read_text())["ka_wall"]
             if "drift_exceeded" not in values:  # nor this one
                 values["drift_exceeded"] = abs(values["energy_drift"]) > MAX_DRIFT
-            rows.append(row(values, lattice))
+            rows.append(row(with_model_readings(values), lattice))
     return rows
 
 

@@ -12,11 +12,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.spatial import Delaunay
 from scipy.stats import qmc
 
-from .errors import InputError
+from .errors import BuildError, InputError
 from .geometry import distance_to_polyline, inside_polygon
-from .network import triangulate_body
+from .network import triangulate_body, unique_edges
+from .sample_cache import cached_draw
 
 # Roles of the points of a body. A FIXED point is held in place and is not part
 # of the contact surface; a wall held fixed everywhere keeps its SURFACE row.
@@ -76,11 +78,18 @@ def lattice_spacing(lattice: str, density: float) -> float:
 
 
 def poisson_points(rng: np.random.Generator, spacing: float, lower, upper) -> np.ndarray:
-    """Points with a minimum distance, filling a box at the density of ``spacing``."""
+    """Points with a minimum distance, filling a box at the density of ``spacing``
+    (scipy's Poisson-disk sampler; kept in ``sample_cache``)."""
     density = 2.0 / (np.sqrt(3.0) * spacing**2)
     radius = np.sqrt(POISSON_FILL / density)
-    sampler = qmc.PoissonDisk(d=2, radius=radius, seed=rng, l_bounds=lower, u_bounds=upper)
-    return sampler.fill_space()
+    arguments = {"radius": float(radius), "lower": list(map(float, lower))}
+    arguments["upper"] = list(map(float, upper))
+
+    def draw() -> np.ndarray:
+        sampler = qmc.PoissonDisk(d=2, radius=radius, seed=rng, l_bounds=lower, u_bounds=upper)
+        return sampler.fill_space()
+
+    return cached_draw(rng, arguments, draw)
 
 
 def regular_points(lattice: str, spacing: float, half_width: float) -> np.ndarray:
@@ -165,31 +174,69 @@ def assemble(
     return Body(points, role, springs, stiffness, surface, spacing, steep=steep)
 
 
+# The readings of the model's surfaces (MODEL.md section 8): the roughness
+# along the surface normal or in both directions; the disk's surface row
+# evenly spaced or at random on the circle; a regular disk's surface a random
+# row joined to the lattice by a band of springs, or the lattice's own outermost
+# points.
+ROUGHNESS_DIRECTIONS = ("normal", "both")
+SURFACE_ROWS = ("even", "random")
+REGULAR_SURFACES = ("band", "lattice")
+# A random surface row keeps this distance, in spacings, between neighbours
+# (a Poisson-disk sample on the circle, MODEL.md section 1). It gives the even
+# row's number of points on average: 93 for an 800-point disk, measured over
+# 60 seeds with scipy 1.17 (0.66 gave 94.4, 0.68 gave 91.4).
+ROW_MIN_DISTANCE = 0.67
+
+
 def make_disk(
     rng: np.random.Generator,
     lattice: str = "random",
     n_points: int = 800,
     roughness: float = 0.03,
     k2_over_k1: float = 3.0 / 7.0,
+    roughness_direction: str = "normal",
+    surface_row: str = "even",
+    regular_surface: str = "band",
 ) -> Body:
     """A disk of radius 1 centred at the origin.
 
-    The surface row is evenly spaced on the circle and pushed along the radius
-    by Gaussian roughness of standard deviation ``roughness``.
+    The surface row is evenly spaced on the circle (or, with ``surface_row``
+    "random", a Poisson-disk sample of it) and pushed along the radius by
+    Gaussian roughness of standard deviation ``roughness`` (and, with
+    ``roughness_direction`` "both", along the circle by another). A regular
+    disk with ``regular_surface`` "lattice" has no separate row: its surface
+    is the lattice's own outermost points (``lattice_surface_disk``).
+
+    The readings' draws come after the default's, so a seed keeps its
+    interior and its radial roughness across the readings.
     """
     if lattice not in LATTICES:
         raise InputError(f"lattice must be one of {', '.join(LATTICES)}; got {lattice!r}")
     density = n_points / np.pi
     spacing = lattice_spacing(lattice, density)
+    if regular_surface == "lattice" and lattice != "random":
+        return lattice_surface_disk(
+            rng, lattice, spacing, roughness, k2_over_k1, roughness_direction
+        )
     n_surface = int(round(2.0 * np.pi / spacing))
-    angle = 2.0 * np.pi * np.arange(n_surface) / n_surface
-    radius = 1.0 + roughness * rng.standard_normal(n_surface)
-    surface_points = radius[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=1)
+    radial = roughness * rng.standard_normal(n_surface)
 
     if lattice == "random":
         candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0])
     else:
         candidates = regular_points(lattice, spacing, 1.0)
+    if surface_row == "random":
+        angle = random_row_angles(rng, spacing)
+        radial = roughness * rng.standard_normal(len(angle))
+    else:
+        angle = 2.0 * np.pi * np.arange(n_surface) / n_surface
+    surface_points = (1.0 + radial)[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=1)
+    if roughness_direction == "both":
+        surface_points = around_the_circle(
+            surface_points, roughness * rng.standard_normal(len(angle))
+        )
+    n_surface = len(surface_points)
     interior = keep_clear(candidates, surface_points, CLEARANCE * spacing)
 
     points = np.concatenate([surface_points, interior])
@@ -207,15 +254,130 @@ def make_disk(
     )
 
 
+def random_row_angles(rng: np.random.Generator, spacing: float) -> np.ndarray:
+    """Angles of a Poisson-disk sample of the unit circle at the even row's mean spacing.
+
+    Sampled on the arc [0, 2 pi - r), r the minimum distance, so that the
+    last and the first point keep it too; then turned by a random angle.
+    """
+    radius = ROW_MIN_DISTANCE * spacing
+    sampler = qmc.PoissonDisk(
+        d=1, radius=radius, seed=rng, l_bounds=[0.0], u_bounds=[2.0 * np.pi - radius]
+    )
+    angles = sampler.fill_space()[:, 0] + 2.0 * np.pi * rng.random()
+    return np.sort(angles % (2.0 * np.pi))
+
+
+def around_the_circle(points: np.ndarray, shift: np.ndarray) -> np.ndarray:
+    """Points of a disk's surface moved by ``shift`` along the circle, in order of angle."""
+    angle = np.arctan2(points[:, 1], points[:, 0])
+    moved = points + shift[:, None] * np.stack([-np.sin(angle), np.cos(angle)], axis=1)
+    # a shift larger than the gap to a neighbour would make the row cross itself
+    order = np.argsort(np.arctan2(moved[:, 1], moved[:, 0]) % (2.0 * np.pi), kind="stable")
+    return moved[order]
+
+
+def lattice_surface_disk(
+    rng: np.random.Generator,
+    lattice: str,
+    spacing: float,
+    roughness: float,
+    k2_over_k1: float,
+    roughness_direction: str = "normal",
+) -> Body:
+    """A regular disk whose surface is the lattice's own outermost points.
+
+    The lattice points within the unit circle that belong to a whole cell (a
+    triangle of the triangular lattice, a square of the square one); the
+    surface is the boundary of those cells, a closed row of points a spacing
+    apart. The springs are the lattice's, taken before that row is roughened
+    along the radius (and, with ``roughness_direction`` "both", along the
+    circle), so every spring joins lattice neighbours.
+    """
+    grid = regular_points(lattice, spacing, 1.0)
+    grid = grid[np.hypot(grid[:, 0], grid[:, 1]) <= 1.0 + 1e-9]
+    points, outline, triangles = whole_cells(grid, lattice, spacing)
+    role = np.full(len(points), INTERIOR)
+    role[outline] = SURFACE
+    if lattice == "square":
+        springs, stiffness = square_springs(points, np.arange(len(points)), spacing, k2_over_k1)
+    else:
+        springs = unique_edges(triangles)
+        stiffness = np.ones(len(springs))
+    order = np.lexsort((springs[:, 1], springs[:, 0]))
+    body = Body(points, role, springs[order], stiffness[order], outline, spacing)
+    row = body.points[outline]
+    radial = roughness * rng.standard_normal(len(outline))
+    row = row * (1.0 + radial / np.hypot(row[:, 0], row[:, 1]))[:, None]
+    if roughness_direction == "both":
+        angle = np.arctan2(row[:, 1], row[:, 0])
+        shift = roughness * rng.standard_normal(len(outline))
+        row = row + shift[:, None] * np.stack([-np.sin(angle), np.cos(angle)], axis=1)
+    body.points[outline] = row
+    return body
+
+
+def whole_cells(
+    grid: np.ndarray, lattice: str, spacing: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points of ``grid`` in whole cells of the lattice; the boundary of
+    those cells as a counter-clockwise loop of indices into those points; and
+    the cells' triangles (a square cell is two), as indices into them."""
+    longest = (np.sqrt(2.0) if lattice == "square" else 1.0) * spacing * (1.0 + 1e-6)
+    triangles = Delaunay(grid).simplices
+    corners = grid[triangles]
+    sides = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2)
+    keep = sides.max(axis=1) <= longest
+    if lattice == "square":  # half a cell whose fourth corner is outside: not a whole cell
+        key = {tuple(k) for k in np.rint(grid / spacing).astype(int).tolist()}
+        for t, corner in enumerate(corners):
+            if keep[t]:
+                legs = [np.linalg.norm(corner[i] - corner[(i + 1) % 3]) for i in range(3)]
+                b = (int(np.argmax(legs)) + 2) % 3  # the vertex opposite the hypotenuse
+                fourth = corner[(b + 1) % 3] + corner[(b + 2) % 3] - corner[b]
+                keep[t] = tuple(np.rint(fourth / spacing).astype(int).tolist()) in key
+    triangles = triangles[keep]
+    used = np.unique(triangles)
+    points = grid[used]
+    triangles = np.searchsorted(used, triangles)
+    edges = np.sort(
+        np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1
+    )
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    boundary = unique[count == 1]
+    neighbours: dict[int, list[int]] = {}
+    for a, b in boundary.tolist():
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+    if any(len(n) != 2 for n in neighbours.values()):
+        raise BuildError("the lattice's outermost cells touch at a corner: no single surface row")
+    loop = [boundary[0, 0], boundary[0, 1]]
+    while len(loop) < len(neighbours):
+        a, b = neighbours[loop[-1]]
+        loop.append(a if a != loop[-2] else b)
+    loop = np.array(loop)
+    x, y = points[loop, 0], points[loop, 1]
+    if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) < 0:  # clockwise: turn it round
+        loop = loop[::-1]
+    return points, loop, triangles
+
+
 def random_rectangle(
-    rng: np.random.Generator, spacing: float, width: float, height: float, roughness: float = 0.0
+    rng: np.random.Generator,
+    spacing: float,
+    width: float,
+    height: float,
+    roughness: float = 0.0,
+    roughness_direction: str = "normal",
 ):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
     Rows of points on its four sides; the top row (but its corners) pushed
-    along y by Gaussian roughness. Returns the points, the outline in
-    counter-clockwise order, and the indices of the top, right, left and
-    bottom rows (sides without the top corners, bottom without its corners).
+    along y by Gaussian roughness, and with ``roughness_direction`` "both"
+    along x by another (then put in order of x, within a tenth of a spacing
+    of the sides). Returns the points, the outline in counter-clockwise order,
+    and the indices of the top, right, left and bottom rows (sides without the
+    top corners, bottom without its corners).
     """
     half = width / 2.0
     n_top = int(round(width / spacing))
@@ -247,6 +409,12 @@ def random_rectangle(
         ]
     )
     candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
+    if roughness_direction == "both":  # drawn after the interior, which a seed keeps
+        inner = top_x[1:-1] + roughness * rng.standard_normal(n_top - 1)
+        edge = half - 0.1 * spacing
+        order = np.argsort(inner, kind="stable")
+        rim[1:n_top, 0] = np.clip(inner[order], -edge, edge)
+        rim[1:n_top, 1] = top_y[1:-1][order]
     interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
     return np.concatenate([rim, interior]), outline, rows
 
@@ -258,15 +426,19 @@ def make_wall(
     height: float = 2.0,
     roughness: float = 0.03,
     fixed: str = "sides",
+    roughness_direction: str = "normal",
 ) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
-    The top face is the contact surface. The points on the vertical sides are
+    The top face is the contact surface, roughened along y (and along x with
+    ``roughness_direction`` "both"). The points on the vertical sides are
     fixed; ``fixed`` = "sides+bottom" also fixes the bottom row and "all" every
     point (a rigid wall).
     """
     spacing = triangular_spacing(n_points / (width * height))
-    points, outline, rows = random_rectangle(rng, spacing, width, height, roughness)
+    points, outline, rows = random_rectangle(
+        rng, spacing, width, height, roughness, roughness_direction
+    )
     top = rows["top"]
     role = np.full(len(points), INTERIOR)
     role[top] = SURFACE

@@ -98,6 +98,48 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
     )
 
 
+# The readings of the model (MODEL.md section 8), SceneSpec's fields by option,
+# with what each choice means.
+MODEL_OPTIONS = {
+    "contact_mass": (
+        "--contact-mass",
+        "the m of the contact's V0 = a m c^2 R / 2: one point's mass, or the disk's",
+    ),
+    "speed_unit": (
+        "--speed-unit",
+        "the unit of --vn: c, the calibrated wave speed, or the disk springs' "
+        "one-dimensional sound speed d sqrt(ka / m)",
+    ),
+    "roughness_direction": (
+        "--roughness-direction",
+        "surface points displaced along the surface normal, or in both directions",
+    ),
+    "surface_row": (
+        "--surface-row",
+        "the disk's surface row evenly spaced on the circle, or a Poisson-disk sample of it",
+    ),
+    "regular_surface": (
+        "--regular-surface",
+        "the triangular and square disks' surface: a row joined to the lattice by a band of "
+        "springs, or the lattice's own outermost points",
+    ),
+}
+
+
+def add_model_arguments(group, defaults: bool = True) -> None:
+    """The readings of the model (MODEL.md section 8); the study's take None as 'preset'."""
+    from .scene import MODEL_READINGS
+
+    for name, (option, meaning) in MODEL_OPTIONS.items():
+        choices = MODEL_READINGS[name]
+        group.add_argument(
+            option,
+            choices=choices,
+            default=choices[0] if defaults else None,
+            help=f"{meaning} (default: {choices[0]})",
+        )
+
+
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
     from .bodies import LATTICES
@@ -167,6 +209,7 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"decay rate of the contact, {CONTACT_A.describe()} (default: 300); finer "
         "disks need a larger one, 300 * sqrt(n_disk / 800)",
     )
+    add_model_arguments(parser.add_argument_group("the readings of the model (MODEL.md section 8)"))
 
 
 # SceneSpec's fields by the options that set them, for messages the user can act on.
@@ -182,6 +225,7 @@ OPTIONS = {
     "roughness": "--roughness",
     "radius": "--radius",
     "seed": "--seed",
+    **{name: option for name, (option, _) in MODEL_OPTIONS.items()},
 }
 
 
@@ -223,4 +267,5 @@ def spec_from_args(args: argparse.Namespace):
         wall_fixed=args.wall_fixed,
         wall_width=args.wall_width,
         contact_a=args.contact_a,
+        **{name: getattr(args, name) for name in MODEL_OPTIONS},
     )

@@ -36,6 +36,15 @@ WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 # the disk's lattice, so that every lattice of a study meets the same wall.
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
+# The readings of the model (MODEL.md section 8), each a SceneSpec field: its
+# choices, the default (the paper's text as this project first read it) first.
+MODEL_READINGS = {
+    "contact_mass": ("point", "disk"),
+    "speed_unit": ("c", "spring"),
+    "roughness_direction": bodies.ROUGHNESS_DIRECTIONS,
+    "surface_row": bodies.SURFACE_ROWS,
+    "regular_surface": bodies.REGULAR_SURFACES,
+}
 # The ranges of the scene's numbers, for SceneSpec.validate and the command line
 # (builder/cli.py) alike.
 ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
@@ -119,6 +128,12 @@ class SceneSpec:
     wall_height: float = 2.0  # in R
     wall_ka: float | str = 1.0  # wall's ka over the random disk's, or "same-c": wave speed c
     contact_a: float = 300.0  # decay rate of the contact, a R
+    # The readings of the model (MODEL.md section 8; MODEL_READINGS below).
+    contact_mass: str = "point"  # V0 = a m c^2 R / 2 with m one point's mass or the disk's
+    speed_unit: str = "c"  # vn in units of c, or of the springs' sound speed d sqrt(ka / m)
+    roughness_direction: str = "normal"  # along the surface normal, or in both directions
+    surface_row: str = "even"  # the disk's surface row: evenly spaced, or at random
+    regular_surface: str = "band"  # a regular disk's surface: a joined row, or its own points
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
 
@@ -177,6 +192,19 @@ class SceneSpec:
             )
         CONTACT_A.check("contact_a", self.contact_a)
         require_contact_resolved(self.contact_a, self.wall_spacing)
+        for name, choices in MODEL_READINGS.items():
+            require_choice(name, getattr(self, name), choices)
+        if self.regular_surface == "lattice":
+            if self.lattice == "random":
+                raise InputError(
+                    "regular_surface lattice applies to the triangular and square disks, "
+                    "got lattice random"
+                )
+            if self.surface_row != "even":
+                raise InputError(
+                    "surface_row random places a surface row, which regular_surface lattice "
+                    "does not have (its surface is the lattice's own points)"
+                )
         Range(0.0, 1000.0).check("contact_time_guess", self.contact_time_guess)
         Range(0.0, 100.0, low_open=True).check("start_gap", self.start_gap)
 
@@ -247,6 +275,22 @@ def wall_spring_constant(spec: SceneSpec) -> tuple[float, float, dict]:
     return spec.wall_ka * ka_reference, ka_reference, wall_material
 
 
+def speed_unit(spec: SceneSpec, spacing: float, ka_disk: float) -> float:
+    """The unit of ``spec.vn`` in units of c: c itself, or with ``speed_unit``
+    "spring" the one-dimensional sound speed of the disk's springs, d sqrt(ka / m),
+    d the disk's nominal spacing (MODEL.md section 8; m = 1)."""
+    if spec.speed_unit == "spring":
+        return float(spacing * np.sqrt(ka_disk))
+    return 1.0
+
+
+def contact_energy(spec: SceneSpec, disk_points: int) -> float:
+    """The contact's V0 = a m c^2 R / 2 (MODEL.md section 2), m one point's mass
+    or, with ``contact_mass`` "disk", the disk's (m = c = 1; a R = contact_a)."""
+    mass = float(disk_points) if spec.contact_mass == "disk" else 1.0
+    return spec.contact_a / 2.0 * mass
+
+
 def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
     """The disk and the wall of a sample, in units of R; independent of the angle.
 
@@ -264,7 +308,16 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
         Points, springs and surfaces of each body, unscaled and unplaced.
     """
     return (
-        _disk(spec.lattice, spec.seed, spec.n_disk, spec.roughness, spec.k2_over_k1),
+        _disk(
+            spec.lattice,
+            spec.seed,
+            spec.n_disk,
+            spec.roughness,
+            spec.k2_over_k1,
+            spec.roughness_direction,
+            spec.surface_row,
+            spec.regular_surface,
+        ),
         _wall(
             spec.seed,
             spec.wall_points,
@@ -272,6 +325,7 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
             spec.wall_height,
             spec.roughness,
             spec.wall_fixed,
+            spec.roughness_direction,
         ),
     )
 
@@ -283,15 +337,15 @@ def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, np.random.SeedSequ
 
 
 @lru_cache(maxsize=8)
-def _disk(lattice, seed, n_disk, roughness, k2_over_k1) -> Body:
+def _disk(lattice, seed, n_disk, roughness, k2_over_k1, *readings) -> Body:
     rng = np.random.default_rng(_sample_seeds(seed)[0])
-    return bodies.make_disk(rng, lattice, n_disk, roughness, k2_over_k1)
+    return bodies.make_disk(rng, lattice, n_disk, roughness, k2_over_k1, *readings)
 
 
 @lru_cache(maxsize=4)
-def _wall(seed, n_wall, width, height, roughness, wall_fixed) -> Body:
+def _wall(seed, n_wall, width, height, roughness, wall_fixed, roughness_direction) -> Body:
     rng = np.random.default_rng(_sample_seeds(seed)[1])
-    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed)
+    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed, roughness_direction)
 
 
 def place_disk(
@@ -348,7 +402,13 @@ def build_scene(spec: SceneSpec) -> Scene:
     ka_wall, ka_reference, wall_material = wall_spring_constant(spec)
     cutoff = wall.spacing * R
     gamma = np.radians(spec.gamma_deg)
-    velocity = np.array([spec.vn * np.tan(gamma), -spec.vn])
+    speed = spec.vn * speed_unit(spec, disk.spacing * R, ka_disk)
+    if speed >= 1.0:
+        raise InputError(
+            f"vn must make the normal speed below c; vn {spec.vn:g} in units of the springs' "
+            f"sound speed is {speed:.3f} c"
+        )
+    velocity = np.array([speed * np.tan(gamma), -speed])
 
     # Centre the sliding contact on the wall, but keep the disk clear of its sides.
     reach = spec.wall_width / 2.0 - 1.5
@@ -446,6 +506,8 @@ def scene_info(
             "m": 1.0,
             "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
             f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
+            # what vn is in units of: c, or the springs' d sqrt(ka / m) (spec.speed_unit)
+            "vn_unit": speed_unit(spec, disk.spacing * R, ka_disk),
         },
         "disk_material": disk_material,
         "wall_material": wall_material,
@@ -464,7 +526,11 @@ def scene_info(
         # the unit of spec.wall_ka: the same for every disk lattice (wall_spring_constant)
         "ka_wall_reference": float(ka_reference),
         "kb_over_ka": spec.kb_over_ka,
-        "contact": {"a": float(a), "V0": float(a * R / 2.0), "cutoff": float(cutoff)},
+        "contact": {
+            "a": float(a),
+            "V0": float(contact_energy(spec, in_disk.sum())),
+            "cutoff": float(cutoff),
+        },
         "disk_mass": float(in_disk.sum()),
         "disk_inertia": inertia,
         "disk_inertia_ratio": float(inertia / (in_disk.sum() * R * R)),

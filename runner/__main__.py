@@ -10,13 +10,14 @@ from pathlib import Path
 from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
+    add_model_arguments,
     add_scene_arguments,
     add_wall_arguments,
     spec_from_args,
     validate_spec,
 )
 from builder.errors import BuildError, InputError
-from builder.scene import CONTACT_A, N_DISK, ROUGHNESS, VN, speed_warning
+from builder.scene import CONTACT_A, MODEL_READINGS, N_DISK, ROUGHNESS, VN, speed_warning
 
 from .lammps_run import LammpsError
 from .options import (
@@ -332,6 +333,7 @@ def add_study_arguments(study) -> None:
         "800) for finer disks)",
     )
     add_wall_arguments(scene, defaults=False)
+    add_model_arguments(scene, defaults=False)
     scene.add_argument(
         "--max-drift",
         type=DRIFT,
@@ -416,6 +418,7 @@ STUDY_OPTIONS = (
     "wall_ka",
     "wall_fixed",
     "wall_width",
+    *MODEL_READINGS,
     "max_drift",
     "report_only",
 )

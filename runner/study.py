@@ -23,7 +23,13 @@ from builder.checks import Range, require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.materials import calibrated, square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene, speed_warning, wall_spring_constant
+from builder.scene import (
+    MODEL_READINGS,
+    SceneSpec,
+    build_scene,
+    speed_warning,
+    wall_spring_constant,
+)
 
 from .impact import run_scene
 from .lammps_run import ROOT as LAMMPS_ROOT
@@ -121,6 +127,12 @@ class Study:
     n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
     wall_ka: float | str = SceneSpec.wall_ka
     wall_fixed: str = SceneSpec.wall_fixed
+    # the readings of the model (MODEL.md section 8; builder.scene.MODEL_READINGS)
+    contact_mass: str = SceneSpec.contact_mass
+    speed_unit: str = SceneSpec.speed_unit
+    roughness_direction: str = SceneSpec.roughness_direction
+    surface_row: str = SceneSpec.surface_row
+    regular_surface: str = SceneSpec.regular_surface
     options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
 
     @property
@@ -153,6 +165,18 @@ class Study:
                 f"{self.samples} x {self.angles} x {len(self.lattices)} = {size}, about "
                 f"{hours:,.0f} hours on 2 workers of this project's machine"
             )
+        regular = [x for x in self.lattices if LATTICES[x]["lattice"] != "random"]
+        if self.regular_surface != SceneSpec.regular_surface and not regular:
+            raise InputError(
+                f"--regular-surface {self.regular_surface} applies to the triangular and square "
+                "disks, and the study has none"
+            )
+        if self.surface_row != SceneSpec.surface_row and self.regular_surface == "lattice":
+            if len(regular) == len(self.lattices):
+                raise InputError(
+                    f"--surface-row {self.surface_row}: no disk of the study has a surface row "
+                    "(with --regular-surface lattice a regular disk's surface is its own points)"
+                )
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
@@ -199,7 +223,16 @@ class Study:
         return out
 
     def spec(self, job: dict) -> SceneSpec:
+        """The scene of a job. The regular disks' surface reading applies to them
+        only; where their surface is the lattice's own, they have no row to place."""
+        regular = LATTICES[job["lattice"]]["lattice"] != "random"
+        own_surface = regular and self.regular_surface == "lattice"
         return SceneSpec(
+            contact_mass=self.contact_mass,
+            speed_unit=self.speed_unit,
+            roughness_direction=self.roughness_direction,
+            surface_row="even" if own_surface else self.surface_row,
+            regular_surface=self.regular_surface if regular else SceneSpec.regular_surface,
             seed=job["seed"],
             gamma_deg=job["gamma"],
             vn=self.vn,
@@ -297,6 +330,7 @@ def study_from_args(args) -> Study:
             "n_wall",
             "wall_ka",
             "wall_fixed",
+            *MODEL_READINGS,
         )
         if getattr(args, key) is not None
     }
