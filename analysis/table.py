@@ -121,8 +121,8 @@ def with_model_readings(values: dict) -> dict:
     for name, choices in MODEL_READINGS.items():
         if values.get(name) in (None, ""):
             values[name] = choices[0]
-    if values.get("vn_in_c") in (None, ""):
-        values["vn_in_c"] = values["vn"]
+    if values.get("vn_in_c") in (None, ""):  # before it, vn was in units of c
+        values["vn_in_c"] = values.get("vn", "")
     return values
 
 
