@@ -161,8 +161,8 @@ def distance_from_text(reading: tuple[str, str]) -> int:
     )
 
 
-def study_rows(study: ReadingStudy, reading: tuple[str, str]) -> list[dict]:
-    """Rows of the study's impacts, finished and failed."""
+def study_rows(study: ReadingStudy, name: str) -> list[dict]:
+    """Rows of the study's impacts, finished and failed, their reading ``name``."""
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     for job in jobs:
@@ -178,15 +178,16 @@ def study_rows(study: ReadingStudy, reading: tuple[str, str]) -> list[dict]:
                 }
             )
     for row in rows:
-        row["reading"] = label(reading)
+        row["reading"] = name
     return rows
 
 
-def seeds_done(rows: list[dict], reading, lattice: str, angles: int) -> int:
-    """How many seeds, from 1 on, ``rows`` hold at every angle (finished or failed)."""
+def seeds_done(rows: list[dict], name: str, lattice: str, angles: int) -> int:
+    """How many seeds, from 1 on, ``rows`` of reading ``name`` hold at every angle
+    (finished or failed)."""
     angles_of: dict[int, set] = {}
     for r in rows:
-        if r["reading"] == label(reading) and r["study_lattice"] == lattice:
+        if r["reading"] == name and r["study_lattice"] == lattice:
             angles_of.setdefault(int(r["seed"]), set()).add(round(float(r["gamma_deg"]), 4))
     seed = 0
     while len(angles_of.get(seed + 1, ())) >= angles:
@@ -406,7 +407,7 @@ def run(rows: list[dict], reading, samples: int, args, save) -> list[dict]:
     """The reading's impacts up to seed ``samples``: those ``rows`` lack run
     as a study of the seeds after the last one they hold whole."""
     for lattice in LATTICES:
-        have = seeds_done(rows, reading, lattice, args.angles)
+        have = seeds_done(rows, label(reading), lattice, args.angles)
         if have >= samples:
             continue
         study = study_for(reading, lattice, samples - have, args, first_seed=have + 1)
@@ -417,7 +418,7 @@ def run(rows: list[dict], reading, samples: int, args, save) -> list[dict]:
             if not (r["reading"] == label(reading) and r["study_lattice"] == lattice)
             or int(r["seed"]) <= have
         ]
-        rows = kept + study_rows(study, reading)
+        rows = kept + study_rows(study, label(reading))
         save(rows)
     return rows
 

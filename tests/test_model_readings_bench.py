@@ -25,8 +25,8 @@ def test_a_run_goes_on_after_the_last_whole_seed():
     rows = rows_of(reading, "random", [1, 2, 3]) + rows_of(reading, "random", [4], (5.7,))
     rows += rows_of(reading, "random", [6])  # past a gap: not counted
     rows += rows_of(("1600_10ka_sides", "disk-mass"), "random", [1, 2, 3, 4, 5])
-    assert bench.seeds_done(rows, reading, "random", 2) == 3
-    assert bench.seeds_done(rows, reading, "triangular", 2) == 0
+    assert bench.seeds_done(rows, bench.label(reading), "random", 2) == 3
+    assert bench.seeds_done(rows, bench.label(reading), "triangular", 2) == 0
     args = argparse.Namespace(angles=2)
     study = bench.study_for(reading, "random", 27, args, first_seed=4)
     assert [j["seed"] for j in study.jobs()][::2] == list(range(4, 31))
