@@ -46,13 +46,7 @@ POINTS = tuple(
     dict.fromkeys([(v, BASE_ROUGHNESS) for v in VNS] + [(BASE_VN, r) for r in ROUGHNESSES])
 )
 FACTS = (("e", 0, "model_free", 0.8), ("mu", 1, "procedure", 0.18), ("beta0", 2, "procedure", 0.56))
-KEEP_COLUMNS = (
-    "reading",
-    *readings.KEEP_COLUMNS[1:6],
-    "vn",
-    "roughness",
-    *readings.KEEP_COLUMNS[7:],
-)
+KEEP_COLUMNS = (*readings.KEEP_COLUMNS, "roughness", "study_reading")
 
 
 class SensitivityStudy(readings.ReadingStudy):
@@ -255,7 +249,7 @@ def main(argv: list[str] | None = None) -> int:
             rows = [
                 r for r in rows if r["reading"] != point_label(point) or int(r["seed"]) <= have
             ] + new
-            write_csv(rows, folder / ROWS_CSV.name, (*KEEP_COLUMNS, "study_reading"))
+            write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
     body, summaries = page(rows, (args.wall, args.model), args)
     draw(summaries, folder / FIGURE_NAME)
     print(body)

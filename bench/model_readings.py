@@ -42,6 +42,7 @@ from common import DOCS, bench_parser, markdown_table, output_folder, refuse, wr
 from analysis.claims import claims
 from analysis.estimates import study_estimates
 from analysis.report import failure_cause, read_failure
+from analysis.seeds import QUANTITIES
 from analysis.table import collect, write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
@@ -87,26 +88,26 @@ FACTS = (
     ("triangular beta > 0", 3, "model_free"),
     ("near a side", 4, "model_free"),
 )
-KEEP_COLUMNS = (
-    "reading",
-    "study_lattice",
-    "lattice",
-    "seed",
-    "gamma_deg",
-    "cot_gamma",
-    "vn",
-    "e",
-    "beta",
-    "omega",
-    "contact_time",
-    "touches",
-    "side_clearance",
-    "energy_drift",
-    "steps",
-    "wall_seconds",
-    "disk_inertia_ratio",
-    "nu",
-    "error",
+# What the page is made from: every quantity the seed bootstrap averages
+# (analysis.seeds.QUANTITIES) and the lattice's constants, besides the impact's key.
+KEEP_COLUMNS = tuple(
+    dict.fromkeys(
+        (
+            "reading",
+            "study_lattice",
+            "lattice",
+            "seed",
+            "gamma_deg",
+            *QUANTITIES,
+            "vn",
+            "touches",
+            "energy_drift",
+            "steps",
+            "wall_seconds",
+            "nu",
+            "error",
+        )
+    )
 )
 TOP = Range(0, len(WALLS) * len(MODELS), integer=True)
 

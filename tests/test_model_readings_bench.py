@@ -76,3 +76,11 @@ def test_the_rule_prefers_the_text_among_readings_as_good():
     assert bench.rank(summaries) == [b, a, c]
     summaries[b]["total"] = 3.4  # beyond one combined error: the least wins
     assert bench.rank(summaries) == [a, b, c]
+
+
+def test_the_committed_rows_hold_what_the_facts_are_made_from():
+    from analysis.seeds import QUANTITIES
+
+    # the seed bootstrap's quantities and the lattice's constants (estimates)
+    needed = {*QUANTITIES, "nu", "disk_inertia_ratio", "seed", "gamma_deg", "study_lattice"}
+    assert needed <= set(bench.KEEP_COLUMNS)
