@@ -90,7 +90,7 @@ def draw(summaries: dict, path: Path) -> None:
     fig, axes = plt.subplots(len(FACTS), 2, figsize=(9, 7.5), sharex="col")
     for column, (axis, values, fixed) in enumerate(
         (
-            ("v_n", VNS, lambda v: (v, BASE_ROUGHNESS)),
+            ("v_n, in units of the reading's speed unit", VNS, lambda v: (v, BASE_ROUGHNESS)),
             ("roughness, R", ROUGHNESSES, lambda r: (BASE_VN, r)),
         )
     ):

@@ -84,3 +84,31 @@ def test_the_committed_rows_hold_what_the_facts_are_made_from():
     # the seed bootstrap's quantities and the lattice's constants (estimates)
     needed = {*QUANTITIES, "nu", "disk_inertia_ratio", "seed", "gamma_deg", "study_lattice"}
     assert needed <= set(bench.KEEP_COLUMNS)
+
+
+@pytest.mark.parametrize(
+    ("script", "page", "rows"),
+    [
+        ("model_readings.py", "model_readings.md", 35),  # every reading a row of the table
+        ("fact_sensitivity.py", "fact_sensitivity.md", 5),  # every (v_n, roughness)
+    ],
+)
+def test_the_committed_page_comes_from_its_rows(tmp_path, script, page, rows):
+    """The committed page, rebuilt from the committed rows alone (the machine
+    and date aside), is the committed page: the same command, table and pick."""
+    import subprocess
+
+    root = Path(__file__).resolve().parents[1]
+    subprocess.run(
+        [sys.executable, f"bench/{script}", "--from-csv", "--out", str(tmp_path)],
+        cwd=root,
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
+    committed = (root / "docs" / "benchmarks" / page).read_text().splitlines()
+    rebuilt = (tmp_path / page).read_text().splitlines()
+    assert committed[0] == rebuilt[0] and committed[3:] == rebuilt[3:]
+    assert committed[2].split(" on ")[0] == rebuilt[2].split(" on ")[0]
+    table = [line for line in rebuilt if line.startswith("| ") and "---" not in line]
+    assert len(table) == rows + 1  # and the header
