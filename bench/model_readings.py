@@ -19,8 +19,9 @@ errors (analysis.estimates, analysis.claims): e (mean over cot gamma >= 1),
 Walton's mu and beta0 fitted the paper's way (e 0.8, K 3), the triangular
 disk's share of angles with mean beta > 0, and the share of contacts within
 1 R of a held side; each one's miss in units of what counts as near, their
-sum with its error, and the ranking by the rule. --top N runs the N best to
---top-samples and ranks again.
+sum with its error, and the ranking by the rule. --top N runs the N best,
+and the current default (the comparison that would change it needs it as
+precise), to --top-samples and ranks again.
 
 The rows (one per impact, failures too) go to model_readings.csv beside the
 page, rewritten after every study, so the run can be stopped and committed
@@ -32,6 +33,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import json
 import math
 import sys
 from dataclasses import dataclass
@@ -46,6 +48,7 @@ from analysis.seeds import QUANTITIES
 from analysis.table import collect, write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
+from builder.scene import SceneSpec
 from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
 
 RUNS = runs_folder() / "model_readings"
@@ -73,6 +76,16 @@ MODELS = {
     "disk-mass+lattice-surface": {"contact_mass": "disk", "regular_surface": "lattice"},
 }
 LATTICES = ("random", "triangular")
+
+
+def current_default() -> tuple[str, str]:
+    """The reading the project runs today (builder.scene.SceneSpec's defaults):
+    --top runs it to --top-samples too, so that the comparison that would
+    change it is made at the same precision as the best."""
+    wall = (SceneSpec.n_wall, SceneSpec.wall_ka, SceneSpec.wall_fixed)
+    return next(k for k, v in WALLS.items() if v == wall), "default"
+
+
 # Choices that depart from the paper's text, for the rule's tie-break: its
 # sentence (800 points, one ka, the sides held), its c, its "displaced along
 # the normal" and its triangular disk whose "surface is the random one's".
@@ -275,8 +288,9 @@ def page(rows: list[dict], args) -> str:
     best = ranking[0] if ranking else None
     return (
         f"Random and triangular disks (800 points), {args.angles} angles from 5.7 to 80.5 "
-        f"degrees, seeds 1 to {args.samples} per reading (the {args.top} best to "
-        f"{args.top_samples}), v_n = 0.1 (in the reading's unit), the default run (velocity "
+        f"degrees, seeds 1 to {args.samples} per reading (the {args.top} best, and the "
+        f"current default, `{label(current_default())}`, to {args.top_samples}), "
+        "v_n = 0.1 (in the reading's unit), the default run (velocity "
         "Verlet, dt = 0.002 R/c). A reading is a wall (the five best of "
         "[scene_readings.md](scene_readings.md), `points_ka_held`) and a reading of the model "
         "(`default`: as built; otherwise the options it changes, docs/model.md section 8).\n\n"
@@ -380,8 +394,9 @@ def check(args: argparse.Namespace) -> None:
         if given:
             option = "--" + given[0].replace("_", "-")
             raise InputError(f"{option} does not apply with --from-csv (its rows give the size)")
-        if not ROWS_CSV.is_file():
-            raise InputError(f"--from-csv: {ROWS_CSV} is missing")
+        for path in (ROWS_CSV, ROWS_CSV.with_suffix(".json")):
+            if not path.is_file():
+                raise InputError(f"--from-csv: {path} is missing")
         return
     if args.top_samples is not None and args.top == 0:
         raise InputError("--top-samples applies with --top 1 or more only")
@@ -436,23 +451,35 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.from_csv:
         rows = committed
-        args.angles = len({r["gamma_deg"] for r in rows})
-        most: dict[str, int] = {}
-        for r in rows:
-            most[r["reading"]] = max(most.get(r["reading"], 0), int(r["seed"]))
-        args.samples, args.top_samples = min(most.values()), max(most.values())
-        args.top = sum(n > args.samples for n in most.values())
+        # the run's size: its record beside the rows (the rows alone cannot tell
+        # whether the current default was among the best or added to them)
+        size = json.loads(ROWS_CSV.with_suffix(".json").read_text())
+        for name in ("samples", "angles", "top", "top_samples"):
+            setattr(args, name, size[name])
     else:
         rows = committed if args.docs else []
 
         def save(rows: list[dict]) -> None:
             write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
+            size = {k: getattr(args, k) for k in ("samples", "angles", "top", "top_samples")}
+            (folder / ROWS_CSV.name).with_suffix(".json").write_text(json.dumps(size) + "\n")
 
         for reading in args.readings:
             rows = run(rows, reading, args.samples, args, save)
-        summaries = {r: facts([x for x in rows if x["reading"] == label(r)]) for r in args.readings}
-        for reading in rank(summaries)[: args.top]:
+        # the best by the first pass alone (seeds up to --samples), so that a run
+        # resumed over rows of the second pass picks the same readings
+        first = [x for x in rows if int(x["seed"]) <= args.samples]
+        summaries = {
+            r: facts([x for x in first if x["reading"] == label(r)]) for r in args.readings
+        }
+        best = rank(summaries)[: args.top]
+        if args.top and current_default() in args.readings and current_default() not in best:
+            best.append(current_default())
+        for reading in best:
             rows = run(rows, reading, args.top_samples, args, save)
+        # the others at --samples, whatever earlier runs left in the rows
+        chosen = {label(r) for r in best}
+        rows = [x for x in rows if x["reading"] in chosen or int(x["seed"]) <= args.samples]
         save(rows)
     body = page(rows, args)
     print(body)
