@@ -21,12 +21,20 @@ The rows go to fact_sensitivity.csv beside the page after every study; with
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 from pathlib import Path
 
 import model_readings as readings
-from common import DOCS, bench_parser, markdown_table, output_folder, refuse, write_report
+from common import (
+    DOCS,
+    bench_parser,
+    markdown_table,
+    output_folder,
+    read_rows_csv,
+    refuse,
+    study_rows,
+    write_report,
+)
 
 from analysis.claims import claims
 from analysis.estimates import study_estimates
@@ -218,10 +226,7 @@ def main(argv: list[str] | None = None) -> int:
         return refuse(__file__, error)
     folder = args.out if args.out is not None else output_folder(args.docs)
     folder.mkdir(parents=True, exist_ok=True)
-    committed = []
-    if ROWS_CSV.is_file():
-        with ROWS_CSV.open() as handle:
-            committed = list(csv.DictReader(handle))
+    committed = read_rows_csv(ROWS_CSV) if ROWS_CSV.is_file() else []
     if args.from_csv:
         rows = committed
         first = rows[0]["study_reading"].split("/") if rows else ["-", "-"]
@@ -242,7 +247,7 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             study = study_for(reading, point, args.samples - have, args, first_seed=have + 1)
             run_study(study, args.workers)
-            new = readings.study_rows(study, point_label(point))
+            new = study_rows(study, point_label(point))
             for row in new:
                 row["vn"], row["roughness"] = point
                 row["study_reading"] = readings.label(reading)

@@ -32,20 +32,27 @@ committed rows are kept), so it goes on across machines and sessions.
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from common import DOCS, bench_parser, markdown_table, output_folder, refuse, write_report
+from common import (
+    DOCS,
+    bench_parser,
+    markdown_table,
+    output_folder,
+    read_rows_csv,
+    refuse,
+    study_rows,
+    write_report,
+)
 
 from analysis.claims import claims
 from analysis.estimates import study_estimates
-from analysis.report import failure_cause, read_failure
 from analysis.seeds import QUANTITIES
-from analysis.table import collect, write_csv
+from analysis.table import write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
 from builder.scene import SceneSpec
@@ -175,27 +182,6 @@ def distance_from_text(reading: tuple[str, str]) -> int:
     )
 
 
-def study_rows(study: ReadingStudy, name: str) -> list[dict]:
-    """Rows of the study's impacts, finished and failed, their reading ``name``."""
-    jobs = study.jobs()
-    rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
-    for job in jobs:
-        if (Path(job["folder"]) / "failed.json").exists():
-            error = read_failure(job)["error"]
-            rows.append(
-                {
-                    "study_lattice": job["lattice"],
-                    "lattice": job["lattice"],
-                    "seed": job["seed"],
-                    "gamma_deg": job["gamma"],
-                    "error": failure_cause(error),
-                }
-            )
-    for row in rows:
-        row["reading"] = name
-    return rows
-
-
 def seeds_done(rows: list[dict], name: str, lattice: str, angles: int) -> int:
     """How many seeds, from 1 on, ``rows`` of reading ``name`` hold at every angle
     (finished or failed)."""
@@ -318,11 +304,6 @@ def page(rows: list[dict], args) -> str:
         + "\nOne row per impact: `model_readings.csv` (`python bench/model_readings.py "
         "--from-csv --docs` rebuilds this page from it).\n"
     )
-
-
-def read_rows_csv(path: Path) -> list[dict]:
-    with path.open() as handle:
-        return list(csv.DictReader(handle))
 
 
 def parser() -> argparse.ArgumentParser:

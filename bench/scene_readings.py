@@ -27,18 +27,25 @@ default. Writes scene_readings.md, scene_readings.png and scene_readings.csv
 from __future__ import annotations
 
 import argparse
-import csv
 import itertools
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from common import DOCS, bench_parser, markdown_table, output_folder, refuse, write_report
+from common import (
+    DOCS,
+    bench_parser,
+    markdown_table,
+    output_folder,
+    read_rows_csv,
+    refuse,
+    study_rows,
+    write_report,
+)
 
 from analysis.fits import Means, fit_walton, reduced_chi2
-from analysis.report import failure_cause, read_failure
-from analysis.table import NEAR_SIDE, collect, mean_rows, write_csv
+from analysis.table import NEAR_SIDE, mean_rows, write_csv
 from analysis.theory import walton_beta
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
@@ -131,26 +138,6 @@ def study_for(reading: tuple, lattice: str, args, samples: int | None = None) ->
         wall_ka=wall_ka,
         wall_fixed=wall_fixed,
     )
-
-
-def run_rows(study: ReadingStudy, reading: tuple) -> list[dict]:
-    """Rows of the study's impacts, finished and failed."""
-    jobs = study.jobs()
-    rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
-    for job in jobs:
-        if (Path(job["folder"]) / "failed.json").exists():
-            error = read_failure(job)["error"]
-            rows.append(
-                {
-                    "study_lattice": job["lattice"],
-                    "seed": job["seed"],
-                    "gamma_deg": job["gamma"],
-                    "error": failure_cause(error),
-                }
-            )
-    for row in rows:
-        row["reading"] = label(*reading)
-    return rows
 
 
 def angle_groups(rows: list[dict]) -> list[np.ndarray]:
@@ -370,11 +357,6 @@ def draw(rows: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
-def read_rows_csv(path: Path) -> list[dict]:
-    with path.open() as handle:
-        return list(csv.DictReader(handle))
-
-
 def page(rows: list[dict], args) -> str:
     summaries: dict[tuple, dict] = {}
     for reading in readings():
@@ -557,7 +539,7 @@ def main(argv: list[str] | None = None) -> int:
         for reading in readings():
             study = study_for(reading, "random", args)
             run_study(study, args.workers)
-            rows += run_rows(study, reading)
+            rows += study_rows(study, label(*reading))
 
         def summaries() -> dict:
             return {
@@ -569,11 +551,13 @@ def main(argv: list[str] | None = None) -> int:
         for reading in rank(summaries())[: args.top]:
             study = study_for(reading, "random", args, args.top_samples)
             run_study(study, args.workers)
-            rows = [x for x in rows if x["reading"] != label(*reading)] + run_rows(study, reading)
+            rows = [x for x in rows if x["reading"] != label(*reading)] + study_rows(
+                study, label(*reading)
+            )
         for reading in rank(summaries())[:3]:
             study = study_for(reading, "triangular", args)
             run_study(study, args.workers)
-            rows += run_rows(study, reading)
+            rows += study_rows(study, label(*reading))
         write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
     draw(rows, folder / FIGURE_NAME)
     body = page(rows, args)
