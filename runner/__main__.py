@@ -17,7 +17,7 @@ from builder.cli import (
     validate_spec,
 )
 from builder.errors import BuildError, InputError
-from builder.scene import CONTACT_A, MODEL_READINGS, N_DISK, ROUGHNESS, VN, speed_warning
+from builder.scene import CONTACT_A, MODEL_READINGS, N_DISK, RADIUS, ROUGHNESS, VN, speed_warning
 
 from .lammps_run import LammpsError
 from .options import (
@@ -320,6 +320,12 @@ def add_study_arguments(study) -> None:
         help=f"std of the surface roughness, {ROUGHNESS.describe()}",
     )
     scene.add_argument(
+        "--radius",
+        type=RADIUS,
+        default=None,
+        help=f"disk radius, {RADIUS.describe()} (default: 1; every length and time scales with it)",
+    )
+    scene.add_argument(
         "--n-disk",
         type=N_DISK,
         default=None,
@@ -413,6 +419,7 @@ STUDY_OPTIONS = (
     "vn",
     "roughness",
     "n_disk",
+    "radius",
     "contact_a",
     "n_wall",
     "wall_ka",

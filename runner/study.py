@@ -121,6 +121,7 @@ class Study:
     first_seed: int = 1
     vn: float = 0.1
     n_disk: int = 800
+    radius: float = SceneSpec.radius  # R; lengths and times scale with it
     roughness: float = SceneSpec.roughness
     wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
     contact_a: float = 300.0  # a R; finer disks need more (docs/contact.md)
@@ -236,6 +237,7 @@ class Study:
             seed=job["seed"],
             gamma_deg=job["gamma"],
             vn=self.vn,
+            radius=self.radius,
             n_disk=self.n_disk,
             roughness=self.roughness,
             wall_width=self.wall_width,
@@ -325,6 +327,7 @@ def study_from_args(args) -> Study:
             "vn",
             "roughness",
             "n_disk",
+            "radius",
             "wall_width",
             "contact_a",
             "n_wall",

@@ -483,3 +483,29 @@ def test_tables_never_replace_another_study(uninterrupted, tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert status == 2 and "holds a study" in err and len(err.splitlines()) == 1
     assert {p.name: p.read_bytes() for p in folder.iterdir() if p.is_file()} == before
+
+
+def test_a_study_on_a_larger_disk_is_the_same_study_scaled():
+    """--radius scales every length and time: at R = 2 with twice the step, a
+    smooth impact has the same e and beta, half the spin and twice the contact."""
+    tables = {}
+    for radius, dt in (("1", "0.002"), ("2", "0.004")):
+        name = f"test_study_radius{radius}"
+        subprocess.run(["rm", "-rf", str(RUNS / name)])
+        command = ["--radius", radius, "--dt", dt, "--roughness", "0", "--angles", "2"]
+        proc = subprocess.run(
+            [sys.executable, "-m", "runner", "study", "demo", "--name", name, "--lattices",
+             "random", "--samples", "1", "--n-disk", "200", *command],
+            cwd=ROOT, capture_output=True, text=True, timeout=600,
+        )  # fmt: skip
+        assert proc.returncode == 0, proc.stderr
+        with (RUNS / name / "impacts.csv").open() as handle:
+            tables[radius] = list(csv.DictReader(handle))
+        assert f"--radius {radius} " in (RUNS / name / "results.md").read_text()
+    assert len(tables["1"]) == len(tables["2"]) == 2
+    for one, two in zip(tables["1"], tables["2"], strict=True):
+        assert float(two["e"]) == pytest.approx(float(one["e"]), abs=1e-6)
+        assert float(two["beta"]) == pytest.approx(float(one["beta"]), abs=1e-6)
+        assert float(two["omega"]) == pytest.approx(float(one["omega"]) / 2, abs=1e-7)
+        # read off series.dat's rows, every 40 steps: 0.16 at R = 2
+        assert float(two["contact_time"]) == pytest.approx(2 * float(one["contact_time"]), abs=0.17)
