@@ -156,6 +156,13 @@ def model_options(study: dict) -> str:
     )
 
 
+def speed_unit_name(study: dict) -> str:
+    """The unit of the study's v_n (builder.scene.speed_unit)."""
+    if study.get("speed_unit", "c") == "spring":
+        return "d sqrt(ka / m) (the disk springs' sound speed)"
+    return "c"
+
+
 def wall_clock(study: dict) -> str:
     """How long the whole study took, where study.json records it."""
     clock = study.get("wall_clock")
@@ -213,7 +220,7 @@ def results_page(
         f"# Results: study `{study['name']}`",
         "",
         f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
-        f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} c; "
+        f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} {speed_unit_name(study)}; "
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "

@@ -53,7 +53,7 @@ ROUGHNESSES = (0.015, 0.03, 0.06)
 POINTS = tuple(
     dict.fromkeys([(v, BASE_ROUGHNESS) for v in VNS] + [(BASE_VN, r) for r in ROUGHNESSES])
 )
-FACTS = (("e", 0, "model_free", 0.8), ("mu", 1, "procedure", 0.18), ("beta0", 2, "procedure", 0.56))
+FACTS = readings.FACTS[:3]  # e, mu, beta0
 KEEP_COLUMNS = (*readings.KEEP_COLUMNS, "roughness", "study_reading")
 
 
@@ -83,8 +83,7 @@ def facts(rows: list[dict]) -> dict | None:
     if len({r["gamma_deg"] for r in done}) < 3:
         return out
     table = claims(study_estimates(done, compliant=False)[0])
-    for name, index, kind, _ in FACTS:
-        number = table[index][kind]
+    for name, number in readings.fact_numbers(table, FACTS).items():
         out[name] = (number["value"], number["error"]) if number else (float("nan"),) * 2
     return out
 

@@ -268,11 +268,16 @@ def random_row_angles(rng: np.random.Generator, spacing: float) -> np.ndarray:
     return np.sort(angles % (2.0 * np.pi))
 
 
-def around_the_circle(points: np.ndarray, shift: np.ndarray) -> np.ndarray:
-    """Points of a disk's surface moved by ``shift`` along the circle, in order of angle."""
+def along_the_circle(points: np.ndarray, shift: np.ndarray) -> np.ndarray:
+    """Points of a disk's surface moved by ``shift`` along the circle's tangent."""
     angle = np.arctan2(points[:, 1], points[:, 0])
-    moved = points + shift[:, None] * np.stack([-np.sin(angle), np.cos(angle)], axis=1)
-    # a shift larger than the gap to a neighbour would make the row cross itself
+    return points + shift[:, None] * np.stack([-np.sin(angle), np.cos(angle)], axis=1)
+
+
+def around_the_circle(points: np.ndarray, shift: np.ndarray) -> np.ndarray:
+    """``along_the_circle``, then in order of angle: a shift larger than the gap
+    to a neighbour would make the row cross itself."""
+    moved = along_the_circle(points, shift)
     order = np.argsort(np.arctan2(moved[:, 1], moved[:, 0]) % (2.0 * np.pi), kind="stable")
     return moved[order]
 
@@ -309,10 +314,8 @@ def lattice_surface_disk(
     row = body.points[outline]
     radial = roughness * rng.standard_normal(len(outline))
     row = row * (1.0 + radial / np.hypot(row[:, 0], row[:, 1]))[:, None]
-    if roughness_direction == "both":
-        angle = np.arctan2(row[:, 1], row[:, 0])
-        shift = roughness * rng.standard_normal(len(outline))
-        row = row + shift[:, None] * np.stack([-np.sin(angle), np.cos(angle)], axis=1)
+    if roughness_direction == "both":  # the springs fix the row's order: no re-sorting
+        row = along_the_circle(row, roughness * rng.standard_normal(len(outline)))
     body.points[outline] = row
     return body
 

@@ -499,7 +499,7 @@ def run_job(study: Study, job: dict) -> dict:
     result = run_scene(folder, study.options)
     prune(folder)
     total = time.perf_counter() - start
-    lammps = json.loads((folder / "run.json").read_text())["wall_seconds"]
+    lammps = result["wall_seconds"]
     return {
         "e": result["e"],
         "beta": result["beta"],
