@@ -5,7 +5,7 @@
     python bench/fact_sensitivity.py --from-csv [--docs | --out FOLDER]
 
 Around a reading of bench/model_readings.py (a wall and a reading of the
-model; default: the default scene), the random disk at v_n = 0.05, 0.1 and
+model; default: the default scene's), the random disk at v_n = 0.05, 0.1 and
 0.2 (in the reading's unit) with the roughness at 0.03 R, and at roughness
 0.015, 0.03 and 0.06 R with v_n = 0.1: one study each (runner/study.py,
 resumable), in runs/fact_sensitivity/. For each, e (mean over cot gamma >=
@@ -169,13 +169,13 @@ def parser() -> argparse.ArgumentParser:
         "--wall",
         choices=tuple(readings.WALLS),
         default=None,
-        help="the reading's wall (default: density_1ka_sides-bottom, the default scene's)",
+        help="the reading's wall (default: the default scene's)",
     )
     parser.add_argument(
         "--model",
         choices=tuple(readings.MODELS),
         default=None,
-        help="the reading of the model (default: default)",
+        help="the reading of the model (default: the default scene's)",
     )
     parser.add_argument(
         "--samples", type=SAMPLES, default=None, help=f"seeds, {SAMPLES.describe()} (default: 12)"
@@ -208,8 +208,9 @@ def check(args: argparse.Namespace) -> None:
         if not ROWS_CSV.is_file():
             raise InputError(f"--from-csv: {ROWS_CSV} is missing")
         return
-    args.wall = args.wall or "density_1ka_sides-bottom"
-    args.model = args.model or "default"
+    wall, model = readings.current_default()
+    args.wall = args.wall or wall
+    args.model = args.model or model
     args.samples = args.samples or 12
     args.angles = args.angles or 8
     args.workers = args.workers or 2

@@ -6,7 +6,8 @@
                                    # the page from the committed rows only
 
 A reading is a wall (the five best of docs/benchmarks/scene_readings.md) and
-a reading of the model: as built (`default`), or one choice changed (the
+a reading of the model: as first read (`first-read`: one point's mass, c,
+along the normal, an even row, the band), or one choice changed (the
 contact's mass, the speed unit, the roughness's direction, the disk's surface
 row, a regular disk's own surface), or the disk's mass with the regular
 disk's own surface. Each runs the random and the triangular disk at the
@@ -20,8 +21,8 @@ Walton's mu and beta0 fitted the paper's way (e 0.8, K 3), the triangular
 disk's share of angles with mean beta > 0, and the share of contacts within
 1 R of a held side; each one's miss in units of what counts as near, their
 sum with its error, and the ranking by the rule. --top N runs the N best,
-and the current default (the comparison that would change it needs it as
-precise), to --top-samples and ranks again.
+and the default of the day (the comparison that would change it needs it as
+precise; model_readings.json records it), to --top-samples and ranks again.
 
 The rows (one per impact, failures too) go to model_readings.csv beside the
 page, rewritten after every study, so the run can be stopped and committed
@@ -55,7 +56,7 @@ from analysis.seeds import QUANTITIES
 from analysis.table import write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
-from builder.scene import SceneSpec
+from builder.scene import FIRST_READING, SceneSpec
 from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
 
 RUNS = runs_folder() / "model_readings"
@@ -74,7 +75,7 @@ WALLS = {
 # the issue's trials point at (the disk's mass moved mu most; a regular disk
 # with its own surface is the construction that could make it slip).
 MODELS = {
-    "default": {},
+    "first-read": {},
     "disk-mass": {"contact_mass": "disk"},
     "spring-speed": {"speed_unit": "spring"},
     "both-directions": {"roughness_direction": "both"},
@@ -90,7 +91,9 @@ def current_default() -> tuple[str, str]:
     --top runs it to --top-samples too, so that the comparison that would
     change it is made at the same precision as the best."""
     wall = (SceneSpec.n_wall, SceneSpec.wall_ka, SceneSpec.wall_fixed)
-    return next(k for k, v in WALLS.items() if v == wall), "default"
+    today = {name: getattr(SceneSpec, name) for name in FIRST_READING}
+    model = next(k for k, v in MODELS.items() if {**FIRST_READING, **v} == today)
+    return next(k for k, v in WALLS.items() if v == wall), model
 
 
 # Choices that depart from the paper's text, for the rule's tie-break: its
@@ -175,8 +178,10 @@ def study_for(
     choices = dict(MODELS[model])
     if lattice == "random":
         choices.pop("regular_surface", None)
+    # "default": the folder's name from before the default moved
     own = "+".join(f"{k}={v}" for k, v in sorted(choices.items())) or "default"
     n_wall, wall_ka, wall_fixed = WALLS[wall]
+    choices = {**FIRST_READING, **choices}  # relative to the first reading, not today's default
     return ReadingStudy(
         f"{wall}_{own}_{lattice}",
         lattices=(lattice,),
@@ -291,11 +296,14 @@ def page(rows: list[dict], args) -> str:
     return (
         f"Random and triangular disks (800 points), {args.angles} angles from 5.7 to 80.5 "
         f"degrees, seeds 1 to {args.samples} per reading (the {args.top} best, and the "
-        f"current default, `{label(current_default())}`, to {args.top_samples}), "
+        f"default when the run was made, `{label(args.compared_default)}`, to "
+        f"{args.top_samples}), "
         "v_n = 0.1 (in the reading's unit), the default run (velocity "
         "Verlet, dt = 0.002 R/c). A reading is a wall (the five best of "
         "[scene_readings.md](scene_readings.md), `points_ka_held`) and a reading of the model "
-        "(`default`: as built; otherwise the options it changes, docs/model.md section 8).\n\n"
+        "(`first-read`: one point's mass, the speed in c, roughness along the normal, an even "
+        "row, the regular disks' band; otherwise the options it changes, docs/model.md "
+        "section 8).\n\n"
         "The facts of MODEL.md section 8, each the value with its seed-bootstrap error (whole "
         "seeds resampled, every angle of both disks together): **e** the mean over cot gamma "
         ">= 1 (paper: 0.8); **mu** and **beta0** Walton's fit to the random disk the paper's "
@@ -453,12 +461,19 @@ def main(argv: list[str] | None = None) -> int:
         size = json.loads(ROWS_CSV.with_suffix(".json").read_text())
         for name in ("samples", "angles", "top", "top_samples"):
             setattr(args, name, size[name])
+        args.compared_default = tuple(size["default"].split("/"))
     else:
         rows = committed if args.docs else []
+        # the default the committed rows were compared with stays the one compared
+        args.compared_default = current_default()
+        if args.docs and ROWS_CSV.with_suffix(".json").is_file():
+            size = json.loads(ROWS_CSV.with_suffix(".json").read_text())
+            args.compared_default = tuple(size.get("default", label(current_default())).split("/"))
 
         def save(rows: list[dict]) -> None:
             write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
             size = {k: getattr(args, k) for k in ("samples", "angles", "top", "top_samples")}
+            size["default"] = label(args.compared_default)
             (folder / ROWS_CSV.name).with_suffix(".json").write_text(json.dumps(size) + "\n")
 
         for reading in args.readings:
@@ -470,8 +485,9 @@ def main(argv: list[str] | None = None) -> int:
             r: facts([x for x in first if x["reading"] == label(r)]) for r in args.readings
         }
         best = rank(summaries)[: args.top]
-        if args.top and current_default() in args.readings and current_default() not in best:
-            best.append(current_default())
+        compared = args.compared_default
+        if args.top and compared in args.readings and compared not in best:
+            best.append(compared)
         for reading in best:
             rows = run(rows, reading, args.top_samples, args, save)
         # the others at --samples, whatever earlier runs left in the rows

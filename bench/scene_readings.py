@@ -137,6 +137,7 @@ def study_for(reading: tuple, lattice: str, args, samples: int | None = None) ->
         n_wall=n_wall,
         wall_ka=wall_ka,
         wall_fixed=wall_fixed,
+        **FIRST_READING,  # the model's reading the committed table was made on
     )
 
 

@@ -128,15 +128,15 @@ MODEL_OPTIONS = {
 
 def add_model_arguments(group, defaults: bool = True) -> None:
     """The readings of the model (MODEL.md section 8); the study's take None as 'preset'."""
-    from .scene import MODEL_READINGS
+    from .scene import MODEL_READINGS, SceneSpec
 
     for name, (option, meaning) in MODEL_OPTIONS.items():
-        choices = MODEL_READINGS[name]
+        default = getattr(SceneSpec, name)
         group.add_argument(
             option,
-            choices=choices,
-            default=choices[0] if defaults else None,
-            help=f"{meaning} (default: {choices[0]})",
+            choices=MODEL_READINGS[name],
+            default=default if defaults else None,
+            help=f"{meaning} (default: {default})",
         )
 
 

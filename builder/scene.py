@@ -37,7 +37,8 @@ WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
 # The readings of the model (MODEL.md section 8), each a SceneSpec field: its
-# choices, the default (the paper's text as this project first read it) first.
+# choices, the one this project first read the paper's text as first. The
+# default (SceneSpec) is the rule's pick, which may be another.
 MODEL_READINGS = {
     "contact_mass": ("point", "disk"),
     "speed_unit": ("c", "spring"),
@@ -45,6 +46,8 @@ MODEL_READINGS = {
     "surface_row": bodies.SURFACE_ROWS,
     "regular_surface": bodies.REGULAR_SURFACES,
 }
+# What a scene.json, result or impacts.csv row made before these options means.
+FIRST_READING = {name: choices[0] for name, choices in MODEL_READINGS.items()}
 # The ranges of the scene's numbers, for SceneSpec.validate and the command line
 # (builder/cli.py) alike.
 ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
@@ -117,19 +120,19 @@ class SceneSpec:
     vn: float = 0.1  # normal approach speed, in units of c
     radius: float = 1.0  # R, the unit of length
     n_disk: int = 800  # target number of points in the disk
-    # The wall's reading (MODEL.md section 8) that agrees best with the paper's
-    # facts: docs/model.md, docs/benchmarks/scene_readings.md.
-    n_wall: int | str = WALL_DENSITY  # points in the wall, or "density": the disk's number density
+    # The wall's and the model's reading (MODEL.md section 8) that the rule picks:
+    # docs/model.md, docs/benchmarks/model_readings.md.
+    n_wall: int | str = 1600  # points in the wall, or "density": the disk's number density
     roughness: float = 0.03  # std of surface displacement, in R
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
     kb_over_ka: float = 1e-3
-    wall_fixed: str = "sides+bottom"
+    wall_fixed: str = "sides"
     wall_width: float = 8.0  # in R
     wall_height: float = 2.0  # in R
-    wall_ka: float | str = 1.0  # wall's ka over the random disk's, or "same-c": wave speed c
+    wall_ka: float | str = 10.0  # wall's ka over the random disk's, or "same-c": wave speed c
     contact_a: float = 300.0  # decay rate of the contact, a R
     # The readings of the model (MODEL.md section 8; MODEL_READINGS below).
-    contact_mass: str = "point"  # V0 = a m c^2 R / 2 with m one point's mass or the disk's
+    contact_mass: str = "disk"  # V0 = a m c^2 R / 2 with m one point's mass or the disk's
     speed_unit: str = "c"  # vn in units of c, or of the springs' sound speed d sqrt(ka / m)
     roughness_direction: str = "normal"  # along the surface normal, or in both directions
     surface_row: str = "even"  # the disk's surface row: evenly spaced, or at random
