@@ -49,6 +49,7 @@ from analysis.table import NEAR_SIDE, mean_rows, write_csv
 from analysis.theory import walton_beta
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
+from builder.scene import FIRST_READING
 from runner.options import RunOptions
 from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
 
