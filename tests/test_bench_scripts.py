@@ -36,7 +36,7 @@ COMBINATIONS = [
     ("model_readings.py", ["--docs", "--out", "{tmp}"], "--out"),
     ("model_readings.py", ["--top", "0", "--top-samples", "40"], "--top-samples"),
     ("model_readings.py", ["--top", "2", "--top-samples", "6"], "--top-samples"),
-    ("model_readings.py", ["--models", "default", "default"], "--models"),
+    ("model_readings.py", ["--models", "first-read", "first-read"], "--models"),
     ("roughness.py", ["--docs"], "--docs"),
     ("roughness.py", ["--first-seed", str(2**32 - 1), "--seeds", "2"], "--first-seed"),
     ("scene_readings.py", ["--from-csv", "--samples", "3"], "--samples"),

@@ -16,7 +16,7 @@ from builder import bodies
 from builder.cli import MODEL_OPTIONS
 from builder.errors import InputError
 from builder.materials import square_ratio_for_poisson
-from builder.scene import DISK, MODEL_READINGS, SceneSpec, build_scene
+from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec, build_scene
 from runner.__main__ import main as runner_main
 from runner.study import PRESETS, Study
 
@@ -43,7 +43,8 @@ def test_every_reading_is_an_option_with_its_choices():
         == set(Study.__dataclass_fields__) & set(MODEL_READINGS)
     )
     for name, choices in MODEL_READINGS.items():
-        assert getattr(SceneSpec, name) == choices[0]  # the default is the first
+        assert getattr(SceneSpec, name) in choices
+        assert FIRST_READING[name] == choices[0]  # what a record without it means
         with pytest.raises(InputError, match=f"^{name} must be one of"):
             SceneSpec(**{name: "nonsense"}).validate()
 

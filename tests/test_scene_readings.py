@@ -65,22 +65,22 @@ def test_held_points_are_the_reading_s(wall_fixed, rows):
 
 
 def test_the_default_scene_is_the_chosen_reading():
-    """The wall at the disk's number density, the disk's ka, its sides and bottom
-    held: the reading MODEL.md section 8's rule picks from the committed table
-    (docs/benchmarks/scene_readings.md, docs/model.md)."""
+    """The rule's pick of MODEL.md section 8 (docs/benchmarks/model_readings.md,
+    docs/model.md): 1600 wall points, ten times the random disk's ka, the sides
+    held, V0 from the disk's mass; every preset and the command line run it."""
     spec = SceneSpec()
-    assert (spec.n_wall, spec.wall_ka, spec.wall_fixed) == ("density", 1.0, "sides+bottom")
+    chosen = (1600, 10.0, "sides", "disk")
+    assert (spec.n_wall, spec.wall_ka, spec.wall_fixed, spec.contact_mass) == chosen
     from runner.study import PRESETS
 
     for study in PRESETS.values():
-        assert (study.n_wall, study.wall_ka, study.wall_fixed) == ("density", 1.0, "sides+bottom")
+        assert (study.n_wall, study.wall_ka, study.wall_fixed, study.contact_mass) == chosen
     scene = build_scene(SceneSpec(gamma_deg=30.0))
     info = scene.info
-    # the disk's number density: points per area equal within the sampling's scatter
-    disk_density = info["n_disk_points"] / np.pi
-    wall_density = info["n_wall_points"] / (spec.wall_width * spec.wall_height)
-    assert wall_density == pytest.approx(disk_density, rel=0.05)
-    assert info["ka_wall"] == pytest.approx(info["ka_disk"], rel=1e-12)
+    assert abs(info["n_wall_points"] - 1600) < 0.05 * 1600
+    assert info["ka_wall"] == pytest.approx(10.0 * info["ka_disk"], rel=1e-12)
+    held = scene.positions[scene.molecule == WALL_HELD]
+    assert np.isclose(np.abs(held[:, 0]), spec.wall_width / 2).all()  # the sides only
     proc = subprocess.run(
         [sys.executable, "-m", "runner", "impact", "--help"],
         cwd=ROOT,
@@ -89,7 +89,12 @@ def test_the_default_scene_is_the_chosen_reading():
         check=True,
     )
     help_text = " ".join(proc.stdout.split())
-    for default in ("(default: density)", "(default: 1)", "(default: sides+bottom)"):
+    for default in (
+        "(default: 1600)",
+        "(default: 10)",
+        "(default: sides)",
+        "(default: disk)",
+    ):
         assert default in help_text
 
 
