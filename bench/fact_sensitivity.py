@@ -151,7 +151,8 @@ def page(rows: list[dict], reading, args) -> tuple[str, dict]:
     body = (
         f"Random disk (800 points) on wall `{reading[0]}`, model `{reading[1]}` "
         f"(bench/model_readings.py), {args.angles} angles from 5.7 to 80.5 degrees, seeds 1 "
-        f"to {args.samples}, the default run. **e**: mean over cot gamma >= 1 (paper 0.8); "
+        f"to {args.samples}, Verlet at dt = {readings.RUN_OPTIONS.dt:g} R/c. **e**: mean over "
+        "cot gamma >= 1 (paper 0.8); "
         "**mu**, **beta0**: Walton's fit the paper's way, e 0.8 and K 3 (paper 0.18, 0.56). "
         "Each value +- its error: the seed-bootstrap sd, combined with the fit's systematic "
         "error where its reduced chi^2 is above the limit (analysis.claims).\n\n"

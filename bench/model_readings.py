@@ -57,6 +57,7 @@ from analysis.table import write_csv
 from builder.checks import OutFolder, Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING, SceneSpec
+from runner.options import RunOptions
 from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
 
 RUNS = runs_folder() / "model_readings"
@@ -149,6 +150,8 @@ KEEP_COLUMNS = tuple(
     )
 )
 TOP = Range(0, len(WALLS) * len(MODELS), integer=True)
+# The run settings the committed rows were made with: the default of the day.
+RUN_OPTIONS = RunOptions(dt=0.002, route="python")
 
 
 @dataclass
@@ -184,6 +187,7 @@ def study_for(
     choices = {**FIRST_READING, **choices}  # relative to the first reading, not today's default
     return ReadingStudy(
         f"{wall}_{own}_{lattice}",
+        options=RUN_OPTIONS,
         lattices=(lattice,),
         angles=args.angles,
         samples=samples,
@@ -298,8 +302,8 @@ def page(rows: list[dict], args) -> str:
         f"degrees, seeds 1 to {args.samples} per reading (the {args.top} best, and the "
         f"default when the run was made, `{label(args.compared_default)}`, to "
         f"{args.top_samples}), "
-        "v_n = 0.1 (in the reading's unit), the default run (velocity "
-        "Verlet, dt = 0.002 R/c). A reading is a wall (the five best of "
+        "v_n = 0.1 (in the reading's unit), the default run of the day (velocity "
+        f"Verlet, dt = {RUN_OPTIONS.dt:g} R/c). A reading is a wall (the five best of "
         "[scene_readings.md](scene_readings.md), `points_ka_held`) and a reading of the model "
         "(`first-read`: one point's mass, the speed in c, roughness along the normal, an even "
         "row, the regular disks' band; otherwise the options it changes, docs/model.md "

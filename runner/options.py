@@ -36,7 +36,7 @@ DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
 
 @dataclass
 class RunOptions:
-    dt: float = 0.002  # time step, R / c (docs/benchmarks/time_vs_error.md); respa: the outer one
+    dt: float = 0.008  # time step, R / c (docs/benchmarks/time_vs_error.md); respa: the outer one
     # verlet: velocity Verlet, everything at dt; respa: rRESPA, the springs at dt
     # and the contact alone on the inner level at dt / nrespa (decks/setup.lmp)
     integrator: str = "verlet"
