@@ -12,7 +12,7 @@ from pathlib import Path
 from builder.errors import InputError
 from builder.scene import MODEL_READINGS
 
-from . import figures
+from . import figures, speed, speed_page
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
@@ -129,6 +129,12 @@ def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
     return lines
 
 
+def angle_span(rows: list[dict]) -> str:
+    """The study's smallest and largest angle, as the page states them."""
+    gammas = [float(r["gamma_deg"]) for r in rows] or [float("nan")]
+    return f"{min(gammas):.1f} to {max(gammas):.1f}"
+
+
 def angle_options(study: dict) -> str:
     """--cot-gamma's values if the study gave them, else --angles."""
     if study.get("cot_gamma"):
@@ -153,6 +159,28 @@ def model_options(study: dict) -> str:
     return " ".join(
         f"--{name.replace('_', '-')} {study.get(name, choices[0])}"
         for name, choices in MODEL_READINGS.items()
+    )
+
+
+def speed_options(study: dict) -> str:
+    """--speeds if the study has a speed axis, else --vn."""
+    if study.get("speeds"):
+        return "--speeds " + " ".join(f"{v:g}" for v in study["speeds"])
+    return f"--vn {study.get('vn', 0.1):g}"
+
+
+def made_by(study: dict, preset: str) -> str:
+    """The command that runs the study again, every option spelled out."""
+    return (
+        f"python -m runner study {preset} --name {study['name']} --lattices "
+        f"{' '.join(study['lattices'])} {angle_options(study)} --samples {study['samples']} "
+        f"{speed_options(study)} --roughness {study.get('roughness', 0.03):g} "
+        f"--n-disk {study['n_disk']} --radius {study.get('radius', 1.0):g} "
+        f"--wall-width {study.get('wall_width', 8.0):g} "
+        f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
+        f"{model_options(study)} "
+        f"--dt {study['options']['dt']:g} "
+        f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}"
     )
 
 
@@ -220,7 +248,7 @@ def results_page(
         f"# Results: study `{study['name']}`",
         "",
         f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
-        f"from 5.7 to 80.5 degrees; {samples}; v_n = {study['vn']} {speed_unit_name(study)}; "
+        f"from {angle_span(rows)} degrees; {samples}; v_n = {study['vn']} {speed_unit_name(study)}; "
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
@@ -229,15 +257,7 @@ def results_page(
         "`means.csv` (means per lattice and angle, with their seed-bootstrap errors "
         "`*_seed_sd`), `fits.json` (the fits, the model-free measures and the claims below, "
         "with their errors), `failed.csv`. "
-        f"Made by `python -m runner study {preset} --name {study['name']} --lattices "
-        f"{' '.join(study['lattices'])} {angle_options(study)} --samples {study['samples']} "
-        f"--vn {study.get('vn', 0.1):g} --roughness {study.get('roughness', 0.03):g} "
-        f"--n-disk {study['n_disk']} --radius {study.get('radius', 1.0):g} "
-        f"--wall-width {study.get('wall_width', 8.0):g} "
-        f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
-        f"{model_options(study)} "
-        f"--dt {study['options']['dt']:g} "
-        f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}`.",
+        f"Made by `{made_by(study, preset)}`.",
         "",
         *statistics_section(fits),
         *claims_section(fits),
@@ -325,8 +345,10 @@ def report(
     )
     if tables is not None:
         tables.mkdir(parents=True, exist_ok=True)
-        for name in ("impacts.csv", "means.csv", "fits.json", "failed.csv", "study.json"):
-            (tables / name).write_bytes((study.folder / name).read_bytes())
+        for name in ("impacts.csv", "means.csv", "fits.json", "speed.json", "failed.csv"):
+            if (study.folder / name).exists():  # a speed study has speed.json instead of fits
+                (tables / name).write_bytes((study.folder / name).read_bytes())
+        (tables / "study.json").write_bytes((study.folder / "study.json").read_bytes())
     return summary
 
 
@@ -408,9 +430,19 @@ def render(
     tables: str = "",
 ) -> dict:
     """Tables into ``out``, the figures and the page (see ``report``)."""
-    rows = sorted(rows, key=lambda r: (r["study_lattice"], float(r["gamma_deg"]), float(r["seed"])))
+    rows = sorted(
+        rows,
+        key=lambda r: (
+            r["study_lattice"],
+            float(r["vn"]),
+            float(r["gamma_deg"]),
+            float(r["seed"]),
+        ),
+    )
     write_csv(rows, out / "impacts.csv", COLUMNS)
     write_csv(failed, out / "failed.csv", FAILED_COLUMNS)
+    if info.get("speeds"):
+        return render_speed(info, rows, failed, out, page, resamples, preset, tables)
     fits, errors = study_estimates(rows, resamples)
     fits["claims"] = claims(fits)
     means = mean_rows(rows, errors)
@@ -444,5 +476,42 @@ def render(
         "causes": failure_causes(failed),
         "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
         "fits": fits,
+        "page": str(page),
+    }
+
+
+def render_speed(
+    info: dict,
+    rows: list[dict],
+    failed: list[dict],
+    out: Path,
+    page: Path,
+    resamples: int,
+    preset: str,
+    tables: str,
+) -> dict:
+    """A study with a speed axis: speed.json, the figures and its page."""
+    numbers = speed.estimates(rows, resamples)
+    speed.write_json(numbers, out / "speed.json")
+    figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
+    speed_page.draw(numbers, figure_dir)
+    page.write_text(
+        speed_page.page(
+            info,
+            rows,
+            failed,
+            numbers,
+            figure_dir.relative_to(page.parent).as_posix(),
+            made_by(info, preset),
+            tables,
+            preset,
+        )
+    )
+    return {
+        "rows": len(rows),
+        "failed": len(failed),
+        "causes": failure_causes(failed),
+        "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
+        "fits": numbers,
         "page": str(page),
     }

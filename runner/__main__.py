@@ -314,6 +314,15 @@ def add_study_arguments(study) -> None:
         "--vn", type=VN, default=None, help=f"normal approach speed, {VN.describe()}"
     )
     scene.add_argument(
+        "--speeds",
+        nargs="+",
+        type=VN,
+        default=None,
+        metavar="V",
+        help=f"these normal approach speeds as an axis of the study instead of --vn, each "
+        f"{VN.describe()}",
+    )
+    scene.add_argument(
         "--roughness",
         type=ROUGHNESS,
         default=None,
@@ -417,6 +426,7 @@ STUDY_OPTIONS = (
     "extend",
     "dt",
     "vn",
+    "speeds",
     "roughness",
     "n_disk",
     "radius",
@@ -474,7 +484,7 @@ def run_study_command(args) -> int:
         )
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
-        out = docs / "results" if args.docs else runs_folder() / name
+        out = docs / DOC_PAGES[args.preset] if args.docs else runs_folder() / name
         page = docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else out / "results.md"
         require_out_folder("--name", out)
         if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
@@ -504,7 +514,7 @@ def run_study_command(args) -> int:
         study,
         page=docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else None,
         preset=args.preset,
-        tables=docs / "results" if args.docs else None,
+        tables=docs / DOC_PAGES[args.preset] if args.docs else None,
     )
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (

@@ -9,6 +9,7 @@ what is neither, so a killed study loses nothing already done.
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
 import sys
@@ -25,6 +26,7 @@ from builder.lammps_data import write_scene
 from builder.materials import calibrated, square_ratio_for_poisson
 from builder.scene import (
     MODEL_READINGS,
+    VN,
     SceneSpec,
     build_scene,
     speed_warning,
@@ -58,7 +60,7 @@ BATCH = Range(1, 10_000, integer=True)
 MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 85.5
 # Presets whose page is committed under docs/, written only with --docs.
-DOC_PAGES = {"paper": "results"}
+DOC_PAGES = {"paper": "results", "speed": "speed", "grazing": "grazing"}
 # What may differ between a study's study.json and a command that resumes it
 # with --extend: more samples, more lattices.
 EXTENDABLE = ("samples", "lattices")
@@ -120,6 +122,8 @@ class Study:
     samples: int = 100
     first_seed: int = 1
     vn: float = 0.1
+    # impact speeds as a study axis (the speed preset); empty: `vn` alone
+    speeds: tuple[float, ...] = ()
     n_disk: int = 800
     radius: float = SceneSpec.radius  # R; lengths and times scale with it
     roughness: float = SceneSpec.roughness
@@ -158,12 +162,17 @@ class Study:
                 f"got {self.angles}"
             )
         SAMPLES.check("samples", self.samples)
-        size = self.samples * self.angles * len(self.lattices)
+        for value in self.speeds:
+            VN.check("speeds", value)
+        if len(set(self.speeds)) != len(self.speeds):
+            raise InputError(f"speeds names a value twice: {' '.join(map(str, self.speeds))}")
+        size = self.samples * self.angles * len(self.lattices) * len(self.velocities())
         if size > MAX_IMPACTS:
             hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
             raise InputError(
-                f"samples x angles x lattices must be at most {MAX_IMPACTS} impacts, got "
-                f"{self.samples} x {self.angles} x {len(self.lattices)} = {size}, about "
+                f"samples x angles x lattices x speeds must be at most {MAX_IMPACTS} impacts, "
+                f"got {self.samples} x {self.angles} x {len(self.lattices)} x "
+                f"{len(self.velocities())} = {size}, about "
                 f"{hours:,.0f} hours on 2 workers of this project's machine"
             )
         regular = [x for x in self.lattices if LATTICES[x]["lattice"] != "random"]
@@ -181,6 +190,10 @@ class Study:
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
             self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+
+    def velocities(self) -> list[float]:
+        """The study's normal approach speeds, increasing."""
+        return sorted(self.speeds) if self.speeds else [self.vn]
 
     def gammas(self) -> list[float]:
         """The study's angles from the wall's normal, degrees, rounded to 1e-4."""
@@ -203,6 +216,7 @@ class Study:
             fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
             fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
             fields["cot_gamma"] = tuple(fields.get("cot_gamma", ()))
+            fields["speeds"] = tuple(fields.get("speeds", ()))
             options = fields.pop("options", {})
             known = RunOptions.__dataclass_fields__
             return cls(
@@ -212,15 +226,26 @@ class Study:
             raise InputError(f"{path}: not a study's record ({error})") from None
 
     def jobs(self) -> list[dict]:
-        """Every impact, grouped by sample: (lattice, seed) then angle."""
+        """Every impact, grouped by sample: (lattice, seed), then speed and angle.
+        A study with a speed axis has a folder per speed above the angles'."""
         out = []
         for seed in range(self.first_seed, self.first_seed + self.samples):
             for lattice in self.lattices:
-                for gamma in self.gammas():
-                    folder = self.folder / lattice / f"s{seed}" / f"g{gamma:.4f}"
-                    out.append(
-                        {"lattice": lattice, "seed": seed, "gamma": gamma, "folder": str(folder)}
-                    )
+                for vn in self.velocities():
+                    sample = self.folder / lattice / f"s{seed}"
+                    if self.speeds:
+                        sample = sample / f"v{vn:g}"
+                    for gamma in self.gammas():
+                        folder = sample / f"g{gamma:.4f}"
+                        out.append(
+                            {
+                                "lattice": lattice,
+                                "seed": seed,
+                                "gamma": gamma,
+                                "vn": vn,
+                                "folder": str(folder),
+                            }
+                        )
         return out
 
     def spec(self, job: dict) -> SceneSpec:
@@ -236,7 +261,7 @@ class Study:
             regular_surface=self.regular_surface if regular else SceneSpec.regular_surface,
             seed=job["seed"],
             gamma_deg=job["gamma"],
-            vn=self.vn,
+            vn=job.get("vn", self.vn),
             radius=self.radius,
             n_disk=self.n_disk,
             roughness=self.roughness,
@@ -337,7 +362,7 @@ def study_from_args(args) -> Study:
         )
         if getattr(args, key) is not None
     }
-    for dest in ("lattices", "cot_gamma"):
+    for dest in ("lattices", "cot_gamma", "speeds"):
         values = getattr(args, dest) or []
         if len(set(values)) != len(values):
             raise InputError(
@@ -352,6 +377,12 @@ def study_from_args(args) -> Study:
             raise InputError(f"--cot-gamma must give at least {ANGLES.low:g} angles")
         changes["cot_gamma"] = tuple(sorted(set(args.cot_gamma), reverse=True))
         changes["angles"] = len(changes["cot_gamma"])
+    if args.speeds:
+        if args.vn is not None:
+            raise InputError("--vn and --speeds: give one of them")
+        changes["speeds"] = tuple(sorted(args.speeds))
+    elif args.vn is not None and base.speeds:
+        changes["speeds"] = ()  # one speed: the study's axis collapses to --vn
     options = {
         key: getattr(args, key) for key in ("dt", "max_drift") if getattr(args, key) is not None
     }
@@ -384,14 +415,15 @@ def study_from_args(args) -> Study:
     study.validate()
     if not args.report_only:
         check_environment(study)
-        fast = [g for g in study.gammas() if speed_warning(study.vn, g)]
-        if fast:
-            print(
-                f"warning: at {len(fast)} angles from {fast[0]:g} degrees, "
-                f"{speed_warning(study.vn, fast[0])}",
-                file=sys.stderr,
-                flush=True,
-            )
+        for vn in study.velocities():
+            fast = [g for g in study.gammas() if speed_warning(vn, g)]
+            if fast:
+                print(
+                    f"warning: at {len(fast)} angles from {fast[0]:g} degrees, "
+                    f"{speed_warning(vn, fast[0])}",
+                    file=sys.stderr,
+                    flush=True,
+                )
     return study
 
 
@@ -421,9 +453,35 @@ def cpu_name() -> str:
     return "unknown CPU"
 
 
+# The speed preset: v_n from 0.01 to 0.3 c, log-spaced, at near-normal
+# incidence, an angle where the default disk sticks (beta near its plateau)
+# and one where it slides (docs/speed.md).
+SPEED_PRESET = tuple(float(f"{v:.3g}") for v in np.geomspace(0.01, 0.3, 7))
+SPEED_COT_GAMMA = (10.0, 3.0, 0.5)
+# The grazing preset: angles from 30 to 86 degrees, closest where e turns, on
+# a wall three times as wide at the default wall's density (docs/grazing.md).
+GRAZING_DEGREES = (30, 45, 55, 60, 65, 68, 71, 74, 76, 78, 80, 82, 84, 86)
+GRAZING_WIDTH = 24.0
+
 PRESETS = {
     "paper": Study("paper"),
     "demo": Study("demo", lattices=("random",), angles=16, samples=4),
+    "speed": Study(
+        "speed",
+        cot_gamma=SPEED_COT_GAMMA,
+        angles=len(SPEED_COT_GAMMA),
+        samples=20,
+        speeds=SPEED_PRESET,
+    ),
+    "grazing": Study(
+        "grazing",
+        lattices=("random",),
+        cot_gamma=tuple(round(1.0 / math.tan(math.radians(g)), 6) for g in GRAZING_DEGREES),
+        angles=len(GRAZING_DEGREES),
+        samples=30,
+        wall_width=GRAZING_WIDTH,
+        n_wall=round(SceneSpec.n_wall * GRAZING_WIDTH / SceneSpec.wall_width),
+    ),
 }
 
 

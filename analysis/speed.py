@@ -1,0 +1,224 @@
+"""e and beta against the impact speed: the speed study's numbers and page.
+
+A speed study (``runner study speed``) runs every lattice at a few angles and
+several normal approach speeds v_n, with the same seeds at every speed and
+angle; so, as everywhere in this project, errors come from resampling whole
+seeds (analysis.seeds): a seed's impacts at every speed, angle and lattice go
+into a resample together.
+
+From the means per lattice, speed and angle:
+
+- ``1 - e`` against v_n, and a power law 1 - e = A v_n^p fitted over the
+  widest run of consecutive speeds where it holds (reduced chi^2 at most
+  ``POWER_LAW_CHI2``), p with its seed-bootstrap error;
+- beta at the sticking angle (the largest cot gamma below the near-normal
+  one) and the Coulomb friction the sliding angle (the smallest cot gamma)
+  implies, mu_eff = (1 + beta) / ((1 + e) K psi) (analysis.measures), as
+  beta0 and mu against v_n;
+- the lattices' order by e beside their order by shear over bulk modulus
+  (calibration/materials.json), which Gerl and Zippelius (Phys. Rev. E 59,
+  2361, 1999) found to set how inelastic a lattice disk is.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import curve_fit
+
+from builder.materials import calibrated
+
+from .measures import mu_eff
+from .seeds import RNG_SEED, SeedTable, resample_indices, seed_tables
+
+# A power law "holds" over a run of speeds whose fit has a reduced chi^2 at
+# most this; the run must hold at least POWER_LAW_POINTS speeds.
+POWER_LAW_CHI2 = 2.0
+POWER_LAW_POINTS = 3
+SPEED_QUANTITIES = ("e", "beta", "side_clearance")
+
+
+def power_law(v, y, sigma) -> dict:
+    """Fit y = A v^p by weighted least squares in log-log.
+
+    Parameters
+    ----------
+    v, y, sigma : array_like
+        Speeds, values (> 0) and their standard errors.
+
+    Returns
+    -------
+    dict
+        ``p``, ``A``, ``p_fit_error`` (from the fit's covariance, the points
+        taken as independent) and ``chi2`` (reduced; NaN with no degrees of
+        freedom).
+    """
+    v, y, sigma = (np.asarray(a, float) for a in (v, y, sigma))
+    log_sigma = sigma / y
+    (log_a, p), cov = curve_fit(
+        lambda x, a, b: a + b * x,
+        np.log(v),
+        np.log(y),
+        sigma=log_sigma,
+        absolute_sigma=True,
+    )
+    residual = (np.log(y) - log_a - p * np.log(v)) / log_sigma
+    dof = len(v) - 2
+    return {
+        "p": float(p),
+        "A": float(math.exp(log_a)),
+        "p_fit_error": float(math.sqrt(cov[1, 1])),
+        "chi2": float(np.sum(residual**2) / dof) if dof > 0 else float("nan"),
+    }
+
+
+def power_law_range(
+    v, y, sigma, max_chi2: float = POWER_LAW_CHI2, min_points: int = POWER_LAW_POINTS
+) -> tuple[int, int] | None:
+    """The widest run of consecutive points [i, j) that a power law fits.
+
+    Among runs of at least ``min_points`` points with every y > 0 and a
+    reduced chi^2 at most ``max_chi2``, the longest; between runs as long,
+    the one of least chi^2. None if there is none.
+    """
+    v, y, sigma = (np.asarray(a, float) for a in (v, y, sigma))
+    best, best_key = None, None
+    for i in range(len(v)):
+        for j in range(i + min_points, len(v) + 1):
+            ok = np.all(y[i:j] > 0) and np.all(np.isfinite(sigma[i:j])) and np.all(sigma[i:j] > 0)
+            if not ok:
+                continue
+            fit = power_law(v[i:j], y[i:j], sigma[i:j])
+            if not fit["chi2"] <= max_chi2:
+                continue
+            key = (j - i, -fit["chi2"])
+            if best_key is None or key > best_key:
+                best, best_key = (i, j), key
+    return best
+
+
+def speed_rows(rows: list[dict]) -> list[dict]:
+    """The rows with a table key per lattice and speed, for seed_tables."""
+    return [{**r, "study_lattice": f"{r['study_lattice']}|{float(r['vn']):g}"} for r in rows]
+
+
+def split_key(key: str) -> tuple[str, float]:
+    lattice, vn = key.split("|")
+    return lattice, float(vn)
+
+
+def shear_over_bulk(lattice: str, k2_over_k1: float | None = None) -> float:
+    """Shear over 2-D bulk modulus in the axes' frame, the wall's normal and
+    tangent (calibration/materials.json): the strip pulled at 45 degrees gives
+    the axes' G (docs/materials.md); the random lattice has one G."""
+    angle = 0.0 if lattice == "random" else 45.0
+    return float(calibrated(lattice, k2_over_k1, angle)["G_over_B"])
+
+
+def estimates(rows: list[dict], resamples: int = 200) -> dict:
+    """Means, power laws, beta0 and mu per lattice and speed, with seed-bootstrap errors."""
+    tables = seed_tables(speed_rows(rows), SPEED_QUANTITIES)
+    lattices = sorted({split_key(k)[0] for k in tables})
+    speeds = sorted({split_key(k)[1] for k in tables})
+    gammas = next(iter(tables.values())).gamma_deg
+    psi = 1.0 / np.tan(np.radians(gammas))
+    K = {}
+    for r in rows:
+        K[r["study_lattice"]] = 1.0 + 1.0 / float(r["disk_inertia_ratio"])
+
+    def means(ts: dict[str, SeedTable]) -> dict:
+        out = {}
+        for key, t in ts.items():
+            out[key + "/e"] = t.mean("e")
+            out[key + "/beta"] = t.mean("beta")
+        return out
+
+    def derived(m: dict) -> dict:
+        """beta0, mu_eff per lattice and speed; p per lattice and angle (on ranges)."""
+        out = {}
+        for lattice in lattices:
+            for vn in speeds:
+                key = f"{lattice}|{vn:g}"
+                e, beta = m[key + "/e"], m[key + "/beta"]
+                out[key + "/beta0"] = beta[sticking]
+                out[key + "/mu"] = mu_eff(psi[sliding], e[sliding], beta[sliding], K[lattice])
+        return out
+
+    # angles increase: index 0 is near-normal, the last the sliding one, the
+    # one after near-normal the sticking one
+    sticking = 1 if len(gammas) > 2 else 0
+    sliding = len(gammas) - 1
+    central = means(tables)
+    central.update(derived(central))
+
+    index = resample_indices(len(next(iter(tables.values())).seeds), resamples, RNG_SEED)
+    draws: dict[str, list] = {}
+    for draw in index:
+        m = means({k: t.take(draw) for k, t in tables.items()})
+        m.update(derived(m))
+        for k, value in m.items():
+            draws.setdefault(k, []).append(np.asarray(value, float))
+    error = {k: np.nanstd(np.array(v), axis=0, ddof=1) for k, v in draws.items()}
+
+    out: dict = {
+        "speeds": speeds,
+        "gamma_deg": [float(g) for g in gammas],
+        "cot_gamma": [float(p) for p in psi],
+        "sticking_gamma": float(gammas[sticking]),
+        "sliding_gamma": float(gammas[sliding]),
+        "resamples": resamples,
+        "lattices": {},
+    }
+    for lattice in lattices:
+        one_minus_e = np.array([1.0 - central[f"{lattice}|{vn:g}/e"] for vn in speeds])
+        e_err = np.array([error[f"{lattice}|{vn:g}/e"] for vn in speeds])
+        counts = np.array([tables[f"{lattice}|{vn:g}"].counts() for vn in speeds])
+        laws = []
+        for j in range(len(gammas)):
+            span = power_law_range(speeds, one_minus_e[:, j], e_err[:, j])
+            law = None
+            if span is not None:
+                i0, i1 = span
+                law = power_law(speeds[i0:i1], one_minus_e[i0:i1, j], e_err[i0:i1, j])
+                ps = []
+                for draw in index:
+                    y = [
+                        1.0 - tables[f"{lattice}|{vn:g}"].take(draw).mean("e")[j]
+                        for vn in speeds[i0:i1]
+                    ]
+                    if np.all(np.array(y) > 0):
+                        ps.append(power_law(speeds[i0:i1], y, e_err[i0:i1, j])["p"])
+                law.update(
+                    v_low=speeds[i0],
+                    v_high=speeds[i1 - 1],
+                    points=i1 - i0,
+                    p_error=float(np.std(ps, ddof=1)) if len(ps) > 1 else float("nan"),
+                )
+            laws.append(law)
+        out["lattices"][lattice] = {
+            "K": K[lattice],
+            "impacts": counts.tolist(),
+            "e": (1.0 - one_minus_e).tolist(),
+            "e_error": e_err.tolist(),
+            "beta": [central[f"{lattice}|{vn:g}/beta"].tolist() for vn in speeds],
+            "beta_error": [error[f"{lattice}|{vn:g}/beta"].tolist() for vn in speeds],
+            "beta0": [float(central[f"{lattice}|{vn:g}/beta0"]) for vn in speeds],
+            "beta0_error": [float(error[f"{lattice}|{vn:g}/beta0"]) for vn in speeds],
+            "mu": [float(central[f"{lattice}|{vn:g}/mu"]) for vn in speeds],
+            "mu_error": [float(error[f"{lattice}|{vn:g}/mu"]) for vn in speeds],
+            "power_law": laws,
+        }
+    return out
+
+
+def write_json(numbers: dict, path: Path) -> None:
+    def plain(x):
+        if isinstance(x, float) and not math.isfinite(x):
+            return None
+        return x
+
+    text = json.dumps(numbers, indent=1, default=plain)
+    path.write_text(text.replace("NaN", "null") + "\n")
