@@ -248,7 +248,8 @@ def results_page(
         f"# Results: study `{study['name']}`",
         "",
         f"{len(rows)} impacts: lattices {', '.join(study['lattices'])}; {study['angles']} angles "
-        f"from {angle_span(rows)} degrees; {samples}; v_n = {study['vn']} {speed_unit_name(study)}; "
+        f"from {angle_span(rows)} degrees; {samples}; "
+        f"v_n = {study['vn']} {speed_unit_name(study)}; "
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
