@@ -12,7 +12,7 @@ from pathlib import Path
 from builder.errors import InputError
 from builder.scene import MODEL_READINGS
 
-from . import figures, speed, speed_page
+from . import figures, grazing, speed, speed_page
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
@@ -457,20 +457,27 @@ def render(
     finished.update(int(float(f["seed"])) for f in failed)
     samples_done = sum(count >= per_sample for count in finished.values())
     figures.draw(means, fits, figure_dir)
-    page.write_text(
-        results_page(
-            info,
-            rows,
-            means,
-            fits,
-            figure_dir.relative_to(page.parent).as_posix(),
-            failed,
-            seconds,
-            samples_done,
-            preset,
-            tables,
-        )
+    text = results_page(
+        info,
+        rows,
+        means,
+        fits,
+        figure_dir.relative_to(page.parent).as_posix(),
+        failed,
+        seconds,
+        samples_done,
+        preset,
+        tables,
     )
+    if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
+        numbers = grazing.grazing_numbers(rows, resamples)
+        fits["grazing"] = numbers
+        (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
+        grazing.draw(numbers, figure_dir)
+        section = grazing.grazing_section(numbers, figure_dir.relative_to(page.parent).as_posix())
+        head, tail = text.split("## Figures", 1)
+        text = head + "\n".join(section) + "\n## Figures" + tail
+    page.write_text(text)
     return {
         "rows": len(rows),
         "failed": len(failed),

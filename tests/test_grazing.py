@@ -1,0 +1,54 @@
+"""The grazing section (analysis/grazing.py): the peak finder and e > 1."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from analysis.grazing import grazing_numbers, peak
+from tests.synthetic import impact_rows, write_tables
+
+
+def test_the_peak_of_a_parabola_is_found_exactly():
+    x = np.linspace(1.0, 12.0, 12)
+    assert peak(x, 1.1 - 0.01 * (x - 6.3) ** 2) == (pytest.approx(6.3), pytest.approx(1.1))
+    # uneven spacing: the three points around the top still fix the parabola
+    x = np.array([1.0, 2.0, 4.0, 5.0, 5.5, 7.0, 10.0])
+    assert peak(x, 1.1 - 0.02 * (x - 5.2) ** 2) == (pytest.approx(5.2), pytest.approx(1.1))
+
+
+@pytest.mark.parametrize("y", [np.linspace(0.5, 0.9, 6), np.linspace(0.9, 0.5, 6)])
+def test_no_peak_where_the_largest_is_at_an_end(y):
+    assert peak(np.arange(6.0), y) is None
+
+
+def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
+    """Synthetic e(tan gamma) with a known peak, seeds sharing an offset: the
+    peak comes back within its bootstrap error, and e > 1 is called
+    significant for a peak at 1.1 and not for one at 1.0."""
+    from analysis.report import report_from_tables
+
+    def e_of(top):
+        return lambda psi: top - 0.004 * (1.0 / psi - 4.0) ** 2
+
+    for top, significant in ((1.1, "yes"), (1.0, "no")):
+        rows = impact_rows("random", lambda psi: -0.5, e_of=e_of(top), seeds=30, rng_seed=3)
+        rng = np.random.default_rng(5)
+        offsets = {s: 0.01 * rng.standard_normal() for s in range(1, 31)}
+        for r in rows:
+            r.update(e=r["e"] + offsets[r["seed"]] + 0.005 * rng.standard_normal())
+        numbers = grazing_numbers(rows, resamples=100)["random"]
+        assert numbers["peak_tan_gamma"] == pytest.approx(
+            4.0, abs=3 * numbers["peak_tan_gamma_error"] + 0.05
+        )
+        assert numbers["peak_e"] == pytest.approx(top, abs=3 * numbers["peak_e_error"])
+        folder = tmp_path / f"top{top}"
+        write_tables(folder, rows, ["random"])
+        page = folder / "results.md"
+        report_from_tables(folder, page, resamples=20)
+        section = page.read_text().split("## Grazing incidence")[1]
+        line = next(x for x in section.splitlines() if x.startswith("| random | "))
+        assert line.rstrip(" |").endswith(significant)
+        assert "grazing" in json.loads((folder / "fits.json").read_text())
