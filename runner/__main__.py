@@ -245,7 +245,8 @@ def add_study_arguments(study) -> None:
         "preset",
         choices=tuple(PRESETS),
         help="paper: the study of docs/model.md section 7 in full; demo: the random lattice, "
-        "4 samples",
+        "4 samples; speed: e and beta against v_n (docs/speed.md); grazing: e up to 86 "
+        "degrees (docs/grazing.md)",
     )
     grid = study.add_argument_group(
         "the grid (default: the study's study.json if it exists, else the preset's)"
@@ -369,8 +370,9 @@ def add_study_arguments(study) -> None:
     pages.add_argument(
         "--docs",
         action="store_true",
-        help="write the page, its figures and tables into docs/ (the paper preset's "
-        "docs/results.md; make paper does this) instead of the study's folder",
+        help="write the page, its figures and tables into docs/ instead of the study's folder: "
+        "docs/results.md for paper (make paper does this), docs/speed.md, docs/grazing.md; "
+        "with another --name, docs/<name>.md",
     )
 
 
@@ -477,6 +479,8 @@ def run_study_command(args) -> int:
 
     docs = ROOT / "docs"
     refuse_idle_options(args)
+    # the preset's page, or for another --name (a reading of the preset) its own
+    doc_name = DOC_PAGES.get(args.preset) if args.name in (None, args.preset) else args.name
     if args.docs and args.preset not in DOC_PAGES:
         raise InputError(
             f"--docs: the {args.preset} preset has no page in docs/; "
@@ -484,8 +488,8 @@ def run_study_command(args) -> int:
         )
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
-        out = docs / DOC_PAGES[args.preset] if args.docs else runs_folder() / name
-        page = docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else out / "results.md"
+        out = docs / doc_name if args.docs else runs_folder() / name
+        page = docs / f"{doc_name}.md" if args.docs else out / "results.md"
         require_out_folder("--name", out)
         if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
             raise InputError(
@@ -512,9 +516,9 @@ def run_study_command(args) -> int:
         record_wall_clock(study, time.monotonic() - start, counts, args.partitions or args.workers)
     summary = report(
         study,
-        page=docs / f"{DOC_PAGES[args.preset]}.md" if args.docs else None,
+        page=docs / f"{doc_name}.md" if args.docs else None,
         preset=args.preset,
-        tables=docs / DOC_PAGES[args.preset] if args.docs else None,
+        tables=docs / doc_name if args.docs else None,
     )
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (
