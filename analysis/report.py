@@ -297,7 +297,7 @@ def read_failure(job: dict) -> dict:
         return {**job, "error": f"unreadable failed.json ({type(error).__name__})"}
 
 
-FAILED_COLUMNS = ("lattice", "seed", "gamma", "error")
+FAILED_COLUMNS = ("lattice", "seed", "gamma", "vn", "error")
 
 
 def report(

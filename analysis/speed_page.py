@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +25,7 @@ def draw(numbers: dict, folder: Path) -> list[Path]:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter
 
     folder.mkdir(parents=True, exist_ok=True)
     v = np.array(numbers["speeds"])
@@ -44,6 +46,7 @@ def draw(numbers: dict, folder: Path) -> list[Path]:
                 ax.plot(x, law["A"] * x ** law["p"], "-", color=colour, lw=1)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel("v_n / c")
         ax.set_title(f"gamma = {gamma:g} deg (cot {1 / np.tan(np.radians(gamma)):.3g})")
     axes[0][0].set_ylabel("1 - e")
@@ -97,23 +100,71 @@ def order_section(numbers: dict, lattice_specs: dict) -> list[str]:
         data = numbers["lattices"][k]
         cells = [pm(data["e"][i][0], data["e_error"][i][0]) for i in range(len(speeds))]
         lines.append(f"| {k} | {ratio[k]:.3f} | " + " | ".join(cells) + " |")
-    agree = []
-    for i in range(len(speeds)):
-        e = [numbers["lattices"][k]["e"][i][0] for k in by_ratio]
-        agree.append(all(a <= b for a, b in zip(e, e[1:], strict=False)))
-    falls = []
-    for k in present:
-        e = np.array(numbers["lattices"][k]["e"])[:, 0]
-        falls.append(bool(np.all(np.diff(e) < 0)))
-    lines += [
-        "",
-        f"- e falls at every step up in speed for {sum(falls)} of the {len(present)} lattices "
-        "at near-normal incidence (the trend Gerl and Zippelius found).",
-        f"- The order by G / B holds at {sum(agree)} of the {len(speeds)} speeds "
-        "(every pair of neighbours in the table in order, without regard to the errors).",
-        "",
-    ]
+    lines += ["", *trend_lines(numbers, present), *order_lines(numbers, by_ratio), ""]
     return lines
+
+
+def trend_lines(numbers: dict, lattices: list[str]) -> list[str]:
+    """e from the slowest to the fastest impact, in errors, per lattice."""
+    parts, falls = [], 0
+    for k in lattices:
+        data = numbers["lattices"][k]
+        e0, e1 = data["e"][0][0], data["e"][-1][0]
+        s0, s1 = data["e_error"][0][0], data["e_error"][-1][0]
+        drop = (e0 - e1) / np.hypot(s0, s1)
+        falls += drop > 2.0
+        parts.append(f"{k} {e0:.3f} to {e1:.3f} ({drop:+.0f} errors)")
+    speeds = numbers["speeds"]
+    return [
+        f"- **The trend**: from v_n = {speeds[0]:g} to {speeds[-1]:g} c, e at near-normal "
+        f"incidence goes {'; '.join(parts)}: it falls by more than two errors on {falls} of "
+        f"the {len(lattices)} lattices (Gerl and Zippelius: falls). Where it is flat, the "
+        "power-law table's range shows it."
+    ]
+
+
+def order_lines(numbers: dict, by_ratio: list[str]) -> list[str]:
+    """Per speed, the pairs of lattices whose e differs by more than two combined
+    errors: how many are in the order of G / B (the lower G / B, the lower e)."""
+    cells = []
+    for i, v in enumerate(numbers["speeds"]):
+        e = [numbers["lattices"][k]["e"][i][0] for k in by_ratio]
+        s = [numbers["lattices"][k]["e_error"][i][0] for k in by_ratio]
+        agree = against = 0
+        for a in range(len(e)):
+            for b in range(a + 1, len(e)):
+                if abs(e[b] - e[a]) > 2 * np.hypot(s[a], s[b]):
+                    agree += e[b] > e[a]
+                    against += e[b] < e[a]
+        cells.append(f"{v:g}: {agree} in order, {against} against")
+    return [
+        "- **The order by G / B**: pairs of lattices whose e differs by more than two "
+        "combined errors, in the order Gerl and Zippelius found (lower G / B, lower e) or "
+        "against it, per v_n: " + "; ".join(cells) + "."
+    ]
+
+
+def resolution_section(rows: list[dict], failed: list[dict], speeds: list[float]) -> list[str]:
+    """Per speed: failures, energy drifts above the guard, the largest drift."""
+    lines = [
+        "## Where the contact stops being resolved",
+        "",
+        "Per speed: the impacts that failed (a disk point inside the wall, a contact that "
+        "outlasts tmax), those whose energy drift exceeds --max-drift (`drift_exceeded`: the "
+        "step is too large for them), and the largest |drift|. The speed above which the "
+        "default run stops resolving the contact is measured on its own by `python "
+        "bench/stability.py --parts speeds` (docs/benchmarks/stability_speeds.md).",
+        "",
+        "| v_n | impacts | failed | drift above the guard | largest drift |",
+        "|---|---|---|---|---|",
+    ]
+    for v in speeds:
+        mine = [r for r in rows if math.isclose(float(r["vn"]), v)]
+        lost = [f for f in failed if math.isclose(float(f.get("vn") or "nan"), v)]
+        drift = [abs(float(r["energy_drift"])) for r in mine] or [float("nan")]
+        above = sum(str(r["drift_exceeded"]) == "True" for r in mine)
+        lines.append(f"| {v:g} | {len(mine)} | {len(lost)} | {above} | {max(drift):.2g} |")
+    return lines + [""]
 
 
 def power_law_section(numbers: dict) -> list[str]:
@@ -207,6 +258,7 @@ def page(
         *power_law_section(numbers),
         *order_section(numbers, {k: LATTICES[k] for k in numbers["lattices"]}),
         *means_section(numbers),
+        *resolution_section(rows, failed, numbers["speeds"]),
         "## Figures",
         "",
         f"![1 - e against v_n]({figure_dir}/speed_e.png)",
