@@ -84,7 +84,14 @@ def claims_section(fits: dict) -> list[str]:
             f"| {_claim_number(model_free, claim['model_free_is'])} "
             f"| {claim['model_free_verdict']} |"
         )
-    return lines + [""]
+    return lines + [
+        "",
+        "These verdicts are this study's reading of the model. Which reading of the model "
+        "and the wall reproduces which fact, by how much, and what moves the facts no reading "
+        "reproduces: docs/model.md, section 8, \"The verdict, fact by fact\" "
+        "(from `python bench/model_readings.py --from-csv --docs` and this page).",
+        "",
+    ]
 
 
 def _claim_number(number: dict | None, what: str) -> str:

@@ -11,6 +11,7 @@ import pytest
 
 from analysis.speed import power_law, power_law_range
 from builder.errors import InputError
+from builder.scene import SceneSpec
 from runner.study import LATTICES, PRESETS, Study
 from tests.synthetic import impact_rows, write_tables
 
@@ -84,10 +85,17 @@ def test_the_grazing_preset_grid():
     gammas = np.array(study.gammas())
     assert gammas.max() >= 85.0 and study.samples >= 30
     assert np.all(np.diff(gammas[gammas >= 60]) <= np.diff(gammas[gammas < 60]).min())
-    # wider, at the default wall's density of points
+    # the default scene, slow enough that the disk's slide during a contact
+    # (v_n tan gamma times the contact time the scene centres) keeps its edge
+    # more than 1 R from a held side at the largest angle
     default = Study("x")
-    assert study.wall_width > default.wall_width
-    assert study.n_wall / study.wall_width == default.n_wall / default.wall_width
+    assert (study.wall_width, study.n_wall, study.wall_fixed) == (
+        default.wall_width,
+        default.n_wall,
+        default.wall_fixed,
+    )
+    slide = study.vn * np.tan(np.radians(gammas.max())) * SceneSpec().contact_time_guess
+    assert slide / 2 + 1.0 + 1.0 < study.wall_width / 2
     study.validate()
 
 

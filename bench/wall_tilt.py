@@ -1,0 +1,186 @@
+"""The letter's mechanism for e > 1, checked from dumps: the wall's tilt under the disk.
+
+    python bench/wall_tilt.py [--tables docs/grazing] [--gamma G] [--dump-every 10]
+                              [--docs | --out FOLDER]
+
+From a grazing study's committed tables (runner study grazing), at the angle
+of the largest mean e (or --gamma), the impact with the largest e and the
+one with the smallest are run again, on the study's own scenes and settings
+(runner.study.Study.spec), with a dump. For each, analysis/tilt.py measures
+the tilt that the wall's deformation adds to its surface under the disk,
+frame by frame, and splits the disk's contact force along the tilted
+surface: the wall-normal impulse, and the part of it the tilt turns from
+the tangential force. The page has the numbers, a figure of the tilt
+against time for both impacts, and their e checked against the table's.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+from common import ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
+
+from analysis.tilt import impulses, surface_tilt
+from builder.checks import InPath, OutFolder, Range
+from builder.errors import InputError
+from runner.impact import run_impact
+from runner.study import Study, runs_folder
+
+DUMP_EVERY = Range(1, 10_000, integer=True)
+
+
+def pick(rows: list[dict], gamma: float | None) -> tuple[float, dict, dict]:
+    """The angle (the largest mean e unless given), its impacts of largest and smallest e."""
+    by_angle: dict[float, list[dict]] = {}
+    for r in rows:
+        by_angle.setdefault(float(r["gamma_deg"]), []).append(r)
+    if gamma is None:
+        gamma = max(by_angle, key=lambda g: np.mean([float(r["e"]) for r in by_angle[g]]))
+    elif gamma not in by_angle:
+        angles = " ".join(f"{g:g}" for g in sorted(by_angle))
+        raise InputError(f"--gamma must be one of the study's angles ({angles}), got {gamma:g}")
+    these = sorted(by_angle[gamma], key=lambda r: float(r["e"]))
+    return gamma, these[-1], these[0]
+
+
+def run(study: Study, row: dict, folder: Path, dump_every: int) -> dict:
+    job = {
+        "lattice": row["study_lattice"],
+        "seed": int(row["seed"]),
+        "gamma": float(row["gamma_deg"]),
+        "vn": float(row["vn"]),
+    }
+    options = replace(study.options, dump_every=dump_every, route="lmp")
+    result = run_impact(study.spec(job), folder, options)
+    tilt = surface_tilt(folder)
+    window = (tilt.time >= result["contact_start"]) & (tilt.time <= result["contact_end"])
+    numbers = impulses(folder, tilt)
+    numbers["largest_tilt_deg"] = float(np.degrees(np.nanmax(np.abs(tilt.tilt[window]))))
+    return {"row": row, "result": result, "tilt": tilt, "numbers": numbers, "window": window}
+
+
+def draw(runs: list[dict], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    for one, colour in zip(runs, ("C3", "C0"), strict=False):
+        t, r = one["tilt"], one["result"]
+        ax.plot(t.time, np.degrees(t.tilt), color=colour, label=f"seed {r['seed']}, e {r['e']:.3f}")
+        ax.axvspan(r["contact_start"], r["contact_end"], color=colour, alpha=0.08)
+    ax.axhline(0.0, color="grey", lw=0.6)
+    ax.set_xlabel("time, R / c")
+    ax.set_ylabel("tilt of the wall under the disk, degrees")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    parser.add_argument(
+        "--tables",
+        type=InPath(needs=("impacts.csv", "study.json")),
+        default=None,
+        help="a grazing study's tables: impacts.csv and study.json (default: docs/grazing)",
+    )
+    parser.add_argument("--gamma", type=float, default=None, help="one of the study's angles")
+    parser.add_argument(
+        "--dump-every",
+        type=DUMP_EVERY,
+        default=10,
+        help=f"steps between dump frames, {DUMP_EVERY.describe()} (default: 10)",
+    )
+    parser.add_argument(
+        "--out",
+        type=OutFolder(lammps=False),
+        default=None,
+        help="write the page and figure here instead of runs/bench/ (not with --docs)",
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        if args.out is not None and args.docs:
+            raise InputError("--out and --docs exclude each other")
+        tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
+        if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
+            raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
+        with (tables / "impacts.csv").open() as handle:
+            rows = list(csv.DictReader(handle))
+        gamma, high, low = pick(rows, args.gamma)
+    except InputError as error:
+        return refuse(__file__, error)
+    study = Study.from_json(tables / "study.json")
+    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder.mkdir(parents=True, exist_ok=True)
+    name = f"wall_tilt_{tables.name}"
+    work = runs_folder() / "bench" / name
+    runs = [run(study, row, work / f"s{row['seed']}", args.dump_every) for row in (high, low)]
+    header = [
+        "seed",
+        "e (table)",
+        "e (rerun)",
+        "largest tilt in contact, deg",
+        "wall-normal impulse",
+        "turned from T",
+        "share",
+    ]
+    table = [
+        [
+            one["row"]["seed"],
+            f"{float(one['row']['e']):.4f}",
+            f"{one['result']['e']:.4f}",
+            f"{one['numbers']['largest_tilt_deg']:.2f}",
+            f"{one['numbers']['normal_impulse']:.3g}",
+            f"{one['numbers']['turned_from_tangential']:+.3g}",
+            f"{one['numbers']['turned_share']:+.2%}",
+        ]
+        for one in runs
+    ]
+    figure = folder / f"{name}.png"
+    draw(runs, figure)
+    series = {
+        f"s{one['row']['seed']}": {
+            "time": one["tilt"].time.tolist(),
+            "tilt_deg": np.degrees(one["tilt"].tilt).round(5).tolist(),
+        }
+        for one in runs
+    }
+    (folder / f"{name}.json").write_text(json.dumps(series) + "\n")
+    body = (
+        f"Study `{study.name}` (tables `{tables}`), gamma = {gamma:g} degrees, the angle of the "
+        "largest mean e unless --gamma; the impacts of largest and smallest e there, run again "
+        f"on the study's scenes and settings with a dump every {args.dump_every} steps. Tilt: "
+        "the slope of the wall surface points' displacement within 0.5 R of the disk centre's "
+        "x (analysis/tilt.py), positive where the surface rises in +x. The wall-normal impulse "
+        "is the integral of the disk's contact force fy; 'turned from T' the integral of the "
+        "tangential force along the tilted surface times sin(tilt), the part of the normal "
+        "impulse that the tilt turns from the tangential force; share: its fraction.\n\n"
+        + markdown_table(header, table)
+        + f"\n\n![tilt against time]({figure.name})\n\n*The tilt under the disk against time; "
+        "shaded: each impact's contact. Series: "
+        f"`{name}.json`.*\n"
+    )
+    command = f"python bench/wall_tilt.py --tables {tables} --dump-every {args.dump_every}"
+    command += f" --gamma {gamma:g}" if args.gamma is not None else ""
+    command += " --docs" if args.docs else ""
+    print(body)
+    path = write_report(name, "The tilt of the wall under the disk", command, body, folder=folder)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
