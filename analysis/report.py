@@ -420,6 +420,15 @@ def shown_path(path: Path) -> str:
     return path.relative_to(root).as_posix() if path.is_relative_to(root) else str(path)
 
 
+def figure_folder(page: Path, out: Path) -> Path:
+    """Where a page's figures go: beside its tables, or, for a page in docs/,
+    docs/figures/ (the paper's results.md) or docs/figures/<page>/ (the others,
+    whose figures would otherwise take the paper's names)."""
+    if page.parent == out:
+        return out / "figures"
+    return page.parent / "figures" / ("" if page.stem == "results" else page.stem)
+
+
 def render(
     info: dict,
     rows: list[dict],
@@ -449,7 +458,7 @@ def render(
     means = mean_rows(rows, errors)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
-    figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
+    figure_dir = figure_folder(page, out)
     seconds = sum(float(r["wall_seconds"]) for r in rows)
     # a sample is complete when every impact of it is done or failed
     per_sample = len(info["lattices"]) * info["angles"]
@@ -501,7 +510,7 @@ def render_speed(
     """A study with a speed axis: speed.json, the figures and its page."""
     numbers = speed.estimates(rows, resamples)
     speed.write_json(numbers, out / "speed.json")
-    figure_dir = page.parent / "figures" if page.parent != out else out / "figures"
+    figure_dir = figure_folder(page, out)
     speed_page.draw(numbers, figure_dir)
     page.write_text(
         speed_page.page(
