@@ -118,7 +118,8 @@ def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
     ]
     lines += [
         "",
-        "On a 16 R wall of the default reading 1 of 12 contacts came near a side at 80.5 "
+        "On a 16 R wall of the reading before today's default (the disk's density, sides "
+        "and bottom held) 1 of 12 contacts came near a side at 80.5 "
         "degrees, and the mean e moved by 0.026 to 0.034 at 63.5 to 80.5 degrees (0.9 to "
         "1.6 standard errors), beta by at most 0.011 (random lattice, 12 samples: "
         "`python bench/wall_width.py`, docs/benchmarks/wall_width.md, docs/model.md). "
