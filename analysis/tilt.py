@@ -11,10 +11,14 @@ from a run with a dump (``RunOptions.dump_every``):
   line against their first-frame x (numpy.polyfit); its slope's angle is the
   tilt the deformation adds to the rough surface's own (positive: the
   surface rises in +x, against a disk moving in +x);
-- the impulses: the disk's contact force (series.dat's fx, fy) split along
-  the tilted surface's normal and tangent, N and T; the wall-normal impulse
-  is the integral of N cos(tilt) plus the integral of T sin(tilt), the
-  second being what the tilt turns from the tangential force.
+- what the tilt does to the approach: the disk comes in at v_n down and v_t
+  along the wall; against a surface tilted by theta (rising ahead of it),
+  its speed along the tilted normal is v_n cos(theta) + v_t sin(theta). So
+  the tilt adds tan(gamma) tan(theta) of the normal approach speed, which a
+  rebound along the tilted normal returns as wall-normal speed: e measured
+  against the wall's normal can exceed 1 where that share is comparable to
+  1 - e. theta is taken as the contact-force-weighted mean tilt (weights:
+  series.dat's fy).
 """
 
 from __future__ import annotations
@@ -70,21 +74,17 @@ def surface_tilt(folder: Path | str, half_width: float = HALF_WIDTH) -> Tilt:
     return Tilt(np.array(times), np.array(tilts), np.array(counts))
 
 
-def impulses(folder: Path | str, tilt: Tilt) -> dict:
-    """The wall-normal impulse on the disk and the part the tilt turns from T."""
+def tilt_effect(folder: Path | str, tilt: Tilt, gamma_deg: float) -> dict:
+    """The force-weighted mean tilt during contact and the share of the normal
+    approach speed it adds, tan(gamma) tan(mean tilt)."""
     series = read_series(Path(folder) / "series.dat")
     t = np.asarray(series["time"], float)
-    fx, fy = np.asarray(series["fx"], float), np.asarray(series["fy"], float)
+    fy = np.asarray(series["fy"], float)
     known = np.isfinite(tilt.tilt)
     theta = np.interp(t, tilt.time[known], tilt.tilt[known]) if known.any() else np.zeros_like(t)
-    normal = -fx * np.sin(theta) + fy * np.cos(theta)
-    tangential = fx * np.cos(theta) + fy * np.sin(theta)
-    total = float(trapezoid(fy, t))
-    turned = float(trapezoid(tangential * np.sin(theta), t))
+    mean = float(trapezoid(fy * theta, t) / trapezoid(fy, t))
     return {
-        "normal_impulse": total,
-        "from_normal_force": float(trapezoid(normal * np.cos(theta), t)),
-        "turned_from_tangential": turned,
-        "turned_share": turned / total if total else float("nan"),
-        "largest_tilt_deg": float(np.degrees(np.nanmax(np.abs(tilt.tilt)))),
+        "normal_impulse": float(trapezoid(fy, t)),
+        "mean_tilt_deg": float(np.degrees(mean)),
+        "approach_share": float(np.tan(np.radians(gamma_deg)) * np.tan(mean)),
     }

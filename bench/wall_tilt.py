@@ -8,10 +8,11 @@ of the largest mean e (or --gamma), the impact with the largest e and the
 one with the smallest are run again, on the study's own scenes and settings
 (runner.study.Study.spec), with a dump. For each, analysis/tilt.py measures
 the tilt that the wall's deformation adds to its surface under the disk,
-frame by frame, and splits the disk's contact force along the tilted
-surface: the wall-normal impulse, and the part of it the tilt turns from
-the tangential force. The page has the numbers, a figure of the tilt
-against time for both impacts, and their e checked against the table's.
+frame by frame, its mean over the contact weighted by the contact force,
+and the share of the normal approach speed that this tilt adds from the
+tangential motion, tan(gamma) tan(tilt). The page has the numbers, a figure
+of the tilt against time for both impacts, and their e checked against the
+table's.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from pathlib import Path
 import numpy as np
 from common import ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
 
-from analysis.tilt import impulses, surface_tilt
+from analysis.tilt import surface_tilt, tilt_effect
 from builder.checks import InPath, OutFolder, Range
 from builder.errors import InputError
 from runner.impact import run_impact
@@ -60,7 +61,7 @@ def run(study: Study, row: dict, folder: Path, dump_every: int) -> dict:
     result = run_impact(study.spec(job), folder, options)
     tilt = surface_tilt(folder)
     window = (tilt.time >= result["contact_start"]) & (tilt.time <= result["contact_end"])
-    numbers = impulses(folder, tilt)
+    numbers = tilt_effect(folder, tilt, float(row["gamma_deg"]))
     numbers["largest_tilt_deg"] = float(np.degrees(np.nanmax(np.abs(tilt.tilt[window]))))
     return {"row": row, "result": result, "tilt": tilt, "numbers": numbers, "window": window}
 
@@ -133,9 +134,8 @@ def main(argv: list[str] | None = None) -> int:
         "e (table)",
         "e (rerun)",
         "largest tilt in contact, deg",
-        "wall-normal impulse",
-        "turned from T",
-        "share",
+        "force-weighted tilt, deg",
+        "tan(gamma) tan(tilt)",
     ]
     table = [
         [
@@ -143,9 +143,8 @@ def main(argv: list[str] | None = None) -> int:
             f"{float(one['row']['e']):.4f}",
             f"{one['result']['e']:.4f}",
             f"{one['numbers']['largest_tilt_deg']:.2f}",
-            f"{one['numbers']['normal_impulse']:.3g}",
-            f"{one['numbers']['turned_from_tangential']:+.3g}",
-            f"{one['numbers']['turned_share']:+.2%}",
+            f"{one['numbers']['mean_tilt_deg']:+.3f}",
+            f"{one['numbers']['approach_share']:+.3f}",
         ]
         for one in runs
     ]
@@ -164,10 +163,13 @@ def main(argv: list[str] | None = None) -> int:
         "largest mean e unless --gamma; the impacts of largest and smallest e there, run again "
         f"on the study's scenes and settings with a dump every {args.dump_every} steps. Tilt: "
         "the slope of the wall surface points' displacement within 0.5 R of the disk centre's "
-        "x (analysis/tilt.py), positive where the surface rises in +x. The wall-normal impulse "
-        "is the integral of the disk's contact force fy; 'turned from T' the integral of the "
-        "tangential force along the tilted surface times sin(tilt), the part of the normal "
-        "impulse that the tilt turns from the tangential force; share: its fraction.\n\n"
+        "x (analysis/tilt.py), positive where the surface rises in +x, ahead of the disk. "
+        "Force-weighted: its mean over the contact weighted by the disk's wall-normal contact "
+        "force. tan(gamma) tan(tilt): the share of the normal approach speed that the tilt "
+        "adds from the tangential motion (the disk meets the tilted surface at v_n cos(tilt) "
+        "+ v_t sin(tilt)), which a rebound along the tilted normal returns as wall-normal "
+        "speed; the letter's mechanism needs it comparable to 1 - e, or to e - 1 where e "
+        "passes 1.\n\n"
         + markdown_table(header, table)
         + f"\n\n![tilt against time]({figure.name})\n\n*The tilt under the disk against time; "
         "shaded: each impact's contact. Series: "

@@ -52,3 +52,6 @@ def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
         line = next(x for x in section.splitlines() if x.startswith("| random | "))
         assert line.rstrip(" |").endswith(significant)
         assert "grazing" in json.loads((folder / "fits.json").read_text())
+        again = folder / "again.md"  # the page comes back from its tables alone
+        report_from_tables(folder, again, resamples=20)
+        assert again.read_text() == page.read_text()
