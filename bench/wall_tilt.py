@@ -63,7 +63,16 @@ def run(study: Study, row: dict, folder: Path, dump_every: int) -> dict:
     window = (tilt.time >= result["contact_start"]) & (tilt.time <= result["contact_end"])
     numbers = tilt_effect(folder, tilt, float(row["gamma_deg"]))
     numbers["largest_tilt_deg"] = float(np.degrees(np.nanmax(np.abs(tilt.tilt[window]))))
+    numbers["e_tilted"] = tilted_e(result, np.radians(numbers["mean_tilt_deg"]))
     return {"row": row, "result": result, "tilt": tilt, "numbers": numbers, "window": window}
+
+
+def tilted_e(result: dict, theta: float) -> float:
+    """e against the normal of the surface tilted by theta, (-sin, cos)."""
+    normal = np.array([-np.sin(theta), np.cos(theta)])
+    v_in = np.array([result["vx_in"], result["vy_in"]])
+    v_out = np.array([result["vx_out"], result["vy_out"]])
+    return float(-(v_out @ normal) / (v_in @ normal))
 
 
 def draw(runs: list[dict], path: Path) -> None:
@@ -136,6 +145,7 @@ def main(argv: list[str] | None = None) -> int:
         "largest tilt in contact, deg",
         "force-weighted tilt, deg",
         "tan(gamma) tan(tilt)",
+        "e against the tilted normal",
     ]
     table = [
         [
@@ -145,6 +155,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{one['numbers']['largest_tilt_deg']:.2f}",
             f"{one['numbers']['mean_tilt_deg']:+.3f}",
             f"{one['numbers']['approach_share']:+.3f}",
+            f"{one['numbers']['e_tilted']:.4f}",
         ]
         for one in runs
     ]
@@ -169,7 +180,8 @@ def main(argv: list[str] | None = None) -> int:
         "adds from the tangential motion (the disk meets the tilted surface at v_n cos(tilt) "
         "+ v_t sin(tilt)), which a rebound along the tilted normal returns as wall-normal "
         "speed; the letter's mechanism needs it comparable to 1 - e, or to e - 1 where e "
-        "passes 1.\n\n"
+        "passes 1. e against the tilted normal: the rebound's e in the frame of the "
+        "force-weighted tilt; where the tilt explains e > 1, this one is below 1.\n\n"
         + markdown_table(header, table)
         + f"\n\n![tilt against time]({figure.name})\n\n*The tilt under the disk against time; "
         "shaded: each impact's contact. Series: "
