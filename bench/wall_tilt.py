@@ -30,6 +30,7 @@ from common import ROOT, bench_parser, markdown_table, output_folder, refuse, wr
 from analysis.tilt import surface_tilt, tilt_effect
 from builder.checks import InPath, OutFolder, Range
 from builder.errors import InputError
+from builder.scene import ANGLE
 from runner.impact import run_impact
 from runner.study import Study, runs_folder
 
@@ -103,7 +104,12 @@ def parser() -> argparse.ArgumentParser:
         default=None,
         help="a grazing study's tables: impacts.csv and study.json (default: docs/grazing)",
     )
-    parser.add_argument("--gamma", type=float, default=None, help="one of the study's angles")
+    parser.add_argument(
+        "--gamma",
+        type=ANGLE,
+        default=None,
+        help=f"one of the study's angles, {ANGLE.describe()} (default: the largest mean e's)",
+    )
     parser.add_argument(
         "--dump-every",
         type=DUMP_EVERY,
