@@ -88,3 +88,12 @@ def tilt_effect(folder: Path | str, tilt: Tilt, gamma_deg: float) -> dict:
         "mean_tilt_deg": float(np.degrees(mean)),
         "approach_share": float(np.tan(np.radians(gamma_deg)) * np.tan(mean)),
     }
+
+
+def tilted_e(result: dict, theta: float) -> float:
+    """e against the normal (-sin theta, cos theta) of a surface tilted by
+    theta, from a result's velocities before and after (vx_in, vy_in, ...)."""
+    normal = np.array([-np.sin(theta), np.cos(theta)])
+    v_in = np.array([result["vx_in"], result["vy_in"]])
+    v_out = np.array([result["vx_out"], result["vy_out"]])
+    return float(-(v_out @ normal) / (v_in @ normal))

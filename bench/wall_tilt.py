@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 from common import ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
 
-from analysis.tilt import surface_tilt, tilt_effect
+from analysis.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.checks import InPath, OutFolder, Range
 from builder.errors import InputError
 from builder.scene import ANGLE
@@ -66,14 +66,6 @@ def run(study: Study, row: dict, folder: Path, dump_every: int) -> dict:
     numbers["largest_tilt_deg"] = float(np.degrees(np.nanmax(np.abs(tilt.tilt[window]))))
     numbers["e_tilted"] = tilted_e(result, np.radians(numbers["mean_tilt_deg"]))
     return {"row": row, "result": result, "tilt": tilt, "numbers": numbers, "window": window}
-
-
-def tilted_e(result: dict, theta: float) -> float:
-    """e against the normal of the surface tilted by theta, (-sin, cos)."""
-    normal = np.array([-np.sin(theta), np.cos(theta)])
-    v_in = np.array([result["vx_in"], result["vy_in"]])
-    v_out = np.array([result["vx_out"], result["vy_out"]])
-    return float(-(v_out @ normal) / (v_in @ normal))
 
 
 def draw(runs: list[dict], path: Path) -> None:
