@@ -27,7 +27,7 @@ from common import bench_parser, markdown_table, write_report
 from analysis.series import read_energies
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
+from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec, build_scene
 from reference.data import read_data
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
@@ -199,7 +199,8 @@ def main(argv: list[str] | None = None) -> int:
                 "## Speeds at which the contact is resolved\n\n"
                 f"Random disk on the default scene at the default run settings (dt "
                 f"{RunOptions().dt:g}), seeds {seeds}. `--vn` takes (0, 0.3] and a run whose "
-                "speed along the wall, v_n tan gamma, exceeds 0.6 c is warned of "
+                f"speed along the wall, v_n tan gamma, exceeds {MAX_TANGENTIAL_SPEED:g} c is "
+                "warned of "
                 "(builder/scene.py's VN and MAX_TANGENTIAL_SPEED): every run below both "
                 "finished.\n\n" + markdown_table(SPEED_HEADER, speed_limits(tmp))
             )
