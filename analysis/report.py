@@ -218,6 +218,16 @@ WORKER_PHASE_NAMES = {
 }
 
 
+def tables_where(tables: str, preset: str) -> str:
+    """Where a page's tables are and the command that remakes it from them."""
+    if not tables:
+        return ""
+    return (
+        f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
+        "makes this page again without the runs)"
+    )
+
+
 def results_page(
     study: dict,
     rows: list[dict],
@@ -231,12 +241,7 @@ def results_page(
     tables: str = "",
 ) -> str:
     """The results page (markdown) of a study from its tables and estimates."""
-    tables_where = (
-        f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
-        "makes this page again without the runs)"
-        if tables
-        else ""
-    )
+    where_tables = tables_where(tables, preset)
     drifted = sum(str(r["drift_exceeded"]) == "True" for r in rows)
     drift_note = f"; {drifted} drifted above the energy threshold (below)" if drifted else ""
     samples = (
@@ -255,7 +260,7 @@ def results_page(
         f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
         f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
-        f"Tables{tables_where}: `impacts.csv` (one row per impact), "
+        f"Tables{where_tables}: `impacts.csv` (one row per impact), "
         "`means.csv` (means per lattice and angle, with their seed-bootstrap errors "
         "`*_seed_sd`), `fits.json` (the fits, the model-free measures and the claims below, "
         "with their errors), `failed.csv`. "

@@ -231,14 +231,8 @@ def page(
     """The speed study's page (markdown)."""
     from runner.study import LATTICES
 
-    from .report import failure_section, wall_end_section
+    from .report import failure_section, tables_where, wall_end_section
 
-    tables_where = (
-        f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
-        "makes this page again without the runs)"
-        if tables
-        else ""
-    )
     near = near_side_counts(rows)
     lines = [
         f"# e and beta against the impact speed: study `{info['name']}`",
@@ -248,8 +242,9 @@ def page(
         f"{', '.join(f'{g:g}' for g in numbers['gamma_deg'])} degrees (near-normal, sticking, "
         f"sliding); {info['samples']} samples, the same seeds at every speed and angle; "
         f"velocity Verlet, dt = {info['options']['dt']} R/c. {len(failed)} impacts failed "
-        f"(below). Tables{tables_where}: `impacts.csv` (one row per impact, the paper study's "
-        "columns), `speed.json` (every number on this page, with its error), `failed.csv`. "
+        f"(below). Tables{tables_where(tables, preset)}: `impacts.csv` (one row per impact, "
+        "the paper study's columns), `speed.json` (every number on this page, with its "
+        "error), `failed.csv`. "
         f"Made by `{made_by}`.",
         "",
         "Every error is the standard deviation over 200 resamples of whole seeds (a seed's "
