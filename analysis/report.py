@@ -239,8 +239,10 @@ def results_page(
     samples_done: int,
     preset: str = "paper",
     tables: str = "",
+    extra: list[str] = (),
 ) -> str:
-    """The results page (markdown) of a study from its tables and estimates."""
+    """The results page (markdown) of a study from its tables and estimates;
+    ``extra``: sections before the figures (the grazing section)."""
     where_tables = tables_where(tables, preset)
     drifted = sum(str(r["drift_exceeded"]) == "True" for r in rows)
     drift_note = f"; {drifted} drifted above the energy threshold (below)" if drifted else ""
@@ -272,6 +274,7 @@ def results_page(
         *measures_section(fits, figure_dir),
         *nu_section(fits, study, rows, means),
         *wall_end_section(means, study.get("wall_width", 8.0)),
+        *extra,
         "## Figures",
         "",
         "Error bars: the seed-bootstrap errors of the per-angle means. Solid lines: the "
@@ -462,9 +465,15 @@ def render(
     fits, errors = study_estimates(rows, resamples)
     fits["claims"] = claims(fits)
     means = mean_rows(rows, errors)
+    figure_dir = figure_folder(page, out)
+    shown_figures = figure_dir.relative_to(page.parent).as_posix()
+    extra = []
+    if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
+        fits["grazing"] = grazing.grazing_numbers(rows, resamples)
+        grazing.draw(fits["grazing"], figure_dir)
+        extra = grazing.grazing_section(fits["grazing"], shown_figures)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
-    figure_dir = figure_folder(page, out)
     seconds = sum(float(r["wall_seconds"]) for r in rows)
     # a sample is complete when every impact of it is done or failed
     per_sample = len(info["lattices"]) * info["angles"]
@@ -472,33 +481,32 @@ def render(
     finished.update(int(float(f["seed"])) for f in failed)
     samples_done = sum(count >= per_sample for count in finished.values())
     figures.draw(means, fits, figure_dir)
-    text = results_page(
-        info,
-        rows,
-        means,
-        fits,
-        figure_dir.relative_to(page.parent).as_posix(),
-        failed,
-        seconds,
-        samples_done,
-        preset,
-        tables,
+    page.write_text(
+        results_page(
+            info,
+            rows,
+            means,
+            fits,
+            shown_figures,
+            failed,
+            seconds,
+            samples_done,
+            preset,
+            tables,
+            extra,
+        )
     )
-    if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
-        numbers = grazing.grazing_numbers(rows, resamples)
-        fits["grazing"] = numbers
-        (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
-        grazing.draw(numbers, figure_dir)
-        section = grazing.grazing_section(numbers, figure_dir.relative_to(page.parent).as_posix())
-        head, tail = text.split("## Figures", 1)
-        text = head + "\n".join(section) + "\n## Figures" + tail
-    page.write_text(text)
+    return summary(rows, failed, fits, page)
+
+
+def summary(rows: list[dict], failed: list[dict], numbers: dict, page: Path) -> dict:
+    """What ``report`` returns: counts, failure causes, the page's numbers."""
     return {
         "rows": len(rows),
         "failed": len(failed),
         "causes": failure_causes(failed),
         "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
-        "fits": fits,
+        "fits": numbers,
         "page": str(page),
     }
 
@@ -530,11 +538,4 @@ def render_speed(
             preset,
         )
     )
-    return {
-        "rows": len(rows),
-        "failed": len(failed),
-        "causes": failure_causes(failed),
-        "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
-        "fits": numbers,
-        "page": str(page),
-    }
+    return summary(rows, failed, numbers, page)

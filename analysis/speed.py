@@ -32,7 +32,7 @@ from scipy.optimize import curve_fit
 from builder.materials import calibrated
 
 from .measures import mu_eff
-from .seeds import RNG_SEED, SeedTable, resample_indices, seed_tables
+from .seeds import RNG_SEED, SeedTable, seed_bootstrap, seed_tables
 
 # A power law "holds" over a run of speeds whose fit has a reduced chi^2 at
 # most this; the run must hold at least POWER_LAW_POINTS speeds.
@@ -125,43 +125,50 @@ def estimates(rows: list[dict], resamples: int = 200) -> dict:
     speeds = sorted({split_key(k)[1] for k in tables})
     gammas = next(iter(tables.values())).gamma_deg
     psi = 1.0 / np.tan(np.radians(gammas))
-    K = {}
-    for r in rows:
-        K[r["study_lattice"]] = 1.0 + 1.0 / float(r["disk_inertia_ratio"])
+    K = {r["study_lattice"]: 1.0 + 1.0 / float(r["disk_inertia_ratio"]) for r in rows}
+    # angles increase: the first is near-normal, the next the sticking one, the
+    # last the sliding one
+    sticking = 1 if len(gammas) > 2 else 0
+    sliding = len(gammas) - 1
+
+    def key(lattice: str, vn: float) -> str:
+        return f"{lattice}|{vn:g}"
 
     def means(ts: dict[str, SeedTable]) -> dict:
-        out = {}
-        for key, t in ts.items():
-            out[key + "/e"] = t.mean("e")
-            out[key + "/beta"] = t.mean("beta")
-        return out
-
-    def derived(m: dict) -> dict:
-        """beta0, mu_eff per lattice and speed; p per lattice and angle (on ranges)."""
+        """e and beta per angle, beta0 and mu_eff, per lattice and speed."""
         out = {}
         for lattice in lattices:
             for vn in speeds:
-                key = f"{lattice}|{vn:g}"
-                e, beta = m[key + "/e"], m[key + "/beta"]
-                out[key + "/beta0"] = beta[sticking]
-                out[key + "/mu"] = mu_eff(psi[sliding], e[sliding], beta[sliding], K[lattice])
+                k = key(lattice, vn)
+                e, beta = ts[k].mean("e"), ts[k].mean("beta")
+                out[k + "/e"], out[k + "/beta"] = e, beta
+                out[k + "/beta0"] = beta[sticking]
+                out[k + "/mu"] = mu_eff(psi[sliding], e[sliding], beta[sliding], K[lattice])
         return out
 
-    # angles increase: index 0 is near-normal, the last the sliding one, the
-    # one after near-normal the sticking one
-    sticking = 1 if len(gammas) > 2 else 0
-    sliding = len(gammas) - 1
     central = means(tables)
-    central.update(derived(central))
+    error = seed_bootstrap(tables, means, resamples, RNG_SEED)
 
-    index = resample_indices(len(next(iter(tables.values())).seeds), resamples, RNG_SEED)
-    draws: dict[str, list] = {}
-    for draw in index:
-        m = means({k: t.take(draw) for k, t in tables.items()})
-        m.update(derived(m))
-        for k, value in m.items():
-            draws.setdefault(k, []).append(np.asarray(value, float))
-    error = {k: np.nanstd(np.array(v), axis=0, ddof=1) for k, v in draws.items()}
+    # each power law's run of speeds is fixed from the central means and their
+    # errors before its exponent is resampled
+    spans = {}
+    for lattice in lattices:
+        for j in range(len(gammas)):
+            y = [1.0 - central[key(lattice, vn) + "/e"][j] for vn in speeds]
+            sigma = [error[key(lattice, vn) + "/e"][j] for vn in speeds]
+            span = power_law_range(speeds, y, sigma)
+            if span is not None:
+                spans[(lattice, j)] = (span, np.array(sigma[span[0] : span[1]]))
+
+    def exponents(ts: dict[str, SeedTable]) -> dict:
+        out = {}
+        for (lattice, j), ((i0, i1), sigma) in spans.items():
+            y = np.array([1.0 - ts[key(lattice, vn)].mean("e")[j] for vn in speeds[i0:i1]])
+            ok = np.all(y > 0)
+            out[f"{lattice}/{j}"] = power_law(speeds[i0:i1], y, sigma)["p"] if ok else np.nan
+        return out
+
+    p_error = seed_bootstrap(tables, exponents, resamples, RNG_SEED)
 
     out: dict = {
         "speeds": speeds,
@@ -173,52 +180,41 @@ def estimates(rows: list[dict], resamples: int = 200) -> dict:
         "lattices": {},
     }
     for lattice in lattices:
-        one_minus_e = np.array([1.0 - central[f"{lattice}|{vn:g}/e"] for vn in speeds])
-        e_err = np.array([error[f"{lattice}|{vn:g}/e"] for vn in speeds])
-        counts = np.array([tables[f"{lattice}|{vn:g}"].counts() for vn in speeds])
         laws = []
         for j in range(len(gammas)):
-            span = power_law_range(speeds, one_minus_e[:, j], e_err[:, j])
-            law = None
-            if span is not None:
-                i0, i1 = span
-                law = power_law(speeds[i0:i1], one_minus_e[i0:i1, j], e_err[i0:i1, j])
-                ps = []
-                for draw in index:
-                    y = [
-                        1.0 - tables[f"{lattice}|{vn:g}"].take(draw).mean("e")[j]
-                        for vn in speeds[i0:i1]
-                    ]
-                    if np.all(np.array(y) > 0):
-                        ps.append(power_law(speeds[i0:i1], y, e_err[i0:i1, j])["p"])
-                law.update(
-                    v_low=speeds[i0],
-                    v_high=speeds[i1 - 1],
-                    points=i1 - i0,
-                    p_error=float(np.std(ps, ddof=1)) if len(ps) > 1 else float("nan"),
-                )
+            if (lattice, j) not in spans:
+                laws.append(None)
+                continue
+            (i0, i1), sigma = spans[(lattice, j)]
+            y = [1.0 - central[key(lattice, vn) + "/e"][j] for vn in speeds[i0:i1]]
+            law = power_law(speeds[i0:i1], y, sigma)
+            law.update(
+                v_low=speeds[i0],
+                v_high=speeds[i1 - 1],
+                points=i1 - i0,
+                p_error=float(p_error[f"{lattice}/{j}"]),
+            )
             laws.append(law)
+
+        def column(name: str, source: dict, lattice: str = lattice) -> list:
+            return [np.asarray(source[key(lattice, vn) + name]).tolist() for vn in speeds]
+
         out["lattices"][lattice] = {
             "K": K[lattice],
-            "impacts": counts.tolist(),
-            "e": (1.0 - one_minus_e).tolist(),
-            "e_error": e_err.tolist(),
-            "beta": [central[f"{lattice}|{vn:g}/beta"].tolist() for vn in speeds],
-            "beta_error": [error[f"{lattice}|{vn:g}/beta"].tolist() for vn in speeds],
-            "beta0": [float(central[f"{lattice}|{vn:g}/beta0"]) for vn in speeds],
-            "beta0_error": [float(error[f"{lattice}|{vn:g}/beta0"]) for vn in speeds],
-            "mu": [float(central[f"{lattice}|{vn:g}/mu"]) for vn in speeds],
-            "mu_error": [float(error[f"{lattice}|{vn:g}/mu"]) for vn in speeds],
+            "impacts": [tables[key(lattice, vn)].counts().tolist() for vn in speeds],
+            "e": column("/e", central),
+            "e_error": column("/e", error),
+            "beta": column("/beta", central),
+            "beta_error": column("/beta", error),
+            "beta0": column("/beta0", central),
+            "beta0_error": column("/beta0", error),
+            "mu": column("/mu", central),
+            "mu_error": column("/mu", error),
             "power_law": laws,
         }
     return out
 
 
 def write_json(numbers: dict, path: Path) -> None:
-    def plain(x):
-        if isinstance(x, float) and not math.isfinite(x):
-            return None
-        return x
-
-    text = json.dumps(numbers, indent=1, default=plain)
-    path.write_text(text.replace("NaN", "null") + "\n")
+    """speed.json, with null where a number is undefined (JSON has no NaN)."""
+    path.write_text(json.dumps(numbers, indent=1).replace("NaN", "null") + "\n")

@@ -42,7 +42,7 @@ HALF_WIDTH = 0.5  # R: the wall under the disk's contact
 class Tilt:
     time: np.ndarray  # the dump's frames, R / c
     tilt: np.ndarray  # radians
-    points: np.ndarray  # wall surface points under the disk at each frame
+    points: np.ndarray  # how many wall surface points are under the disk, per frame
 
 
 def surface_tilt(folder: Path | str, half_width: float = HALF_WIDTH) -> Tilt:

@@ -11,7 +11,7 @@ import sys
 from datetime import date
 from pathlib import Path
 
-from builder.checks import Range, require_out_folder
+from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
 from builder.errors import InputError
 from runner.study import cpu_name, runs_folder
@@ -80,20 +80,35 @@ def markdown_table(header: list[str], rows: list[list[str]]) -> str:
     return "\n".join(lines)
 
 
-def bench_parser(script: str, doc: str) -> OneLineParser:
+def bench_parser(script: str, doc: str, out: str | None = None) -> OneLineParser:
     """A benchmark's parser: one-line errors, exit 2, and --docs.
 
-    ``script`` is the script's __file__, ``doc`` its docstring."""
+    ``script`` is the script's __file__, ``doc`` its docstring. With ``out``
+    (what the script writes, for the help), also --out FOLDER, which argparse
+    refuses beside --docs; ``page_folder`` gives the folder either names."""
     parser = OneLineParser(
         prog=f"python bench/{Path(script).name}", description=doc.strip().splitlines()[0]
     )
-    parser.add_argument(
+    group = parser.add_mutually_exclusive_group() if out else parser
+    group.add_argument(
         "--docs",
         action="store_true",
         help="write the page (and its tables) into docs/benchmarks/, the committed "
         "one; default: runs/bench/",
     )
+    if out:
+        group.add_argument(
+            "--out",
+            type=OutFolder(lammps=False),
+            default=None,
+            help=f"write {out} into this folder instead of runs/bench/",
+        )
     return parser
+
+
+def page_folder(args) -> Path:
+    """Where a page goes: --out if given, else docs/benchmarks/ or runs/bench/."""
+    return args.out if args.out is not None else output_folder(args.docs)
 
 
 def refuse(script: str, error: InputError) -> int:

@@ -29,7 +29,7 @@ from common import (
     DOCS,
     bench_parser,
     markdown_table,
-    output_folder,
+    page_folder,
     read_rows_csv,
     refuse,
     study_rows,
@@ -39,7 +39,6 @@ from common import (
 from analysis.claims import claims
 from analysis.estimates import study_estimates
 from analysis.table import write_csv
-from builder.checks import OutFolder
 from builder.errors import InputError
 from runner.study import ANGLES, SAMPLES, WORKERS, run_study, runs_folder
 
@@ -165,7 +164,7 @@ def page(rows: list[dict], reading, args) -> tuple[str, dict]:
 
 
 def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__)
+    parser = bench_parser(__file__, __doc__, out="the page, figure and rows")
     parser.add_argument(
         "--wall",
         choices=tuple(readings.WALLS),
@@ -190,18 +189,10 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--from-csv", action="store_true", help=f"only the page, from the committed {ROWS_CSV.name}"
     )
-    parser.add_argument(
-        "--out",
-        type=OutFolder(lammps=False),
-        default=None,
-        help="write the page, figure and rows here instead of runs/bench/ (not with --docs)",
-    )
     return parser
 
 
 def check(args: argparse.Namespace) -> None:
-    if args.out is not None and args.docs:
-        raise InputError("--out and --docs exclude each other")
     if args.from_csv:
         given = [n for n in ("wall", "model", "samples", "angles", "workers") if getattr(args, n)]
         if given:
@@ -225,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
         check(args)
     except InputError as error:
         return refuse(__file__, error)
-    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder = page_folder(args)
     folder.mkdir(parents=True, exist_ok=True)
     committed = read_rows_csv(ROWS_CSV) if ROWS_CSV.is_file() else []
     if args.from_csv:

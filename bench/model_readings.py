@@ -43,7 +43,7 @@ from common import (
     DOCS,
     bench_parser,
     markdown_table,
-    output_folder,
+    page_folder,
     read_rows_csv,
     refuse,
     study_rows,
@@ -54,7 +54,7 @@ from analysis.claims import claims
 from analysis.estimates import study_estimates
 from analysis.seeds import QUANTITIES
 from analysis.table import write_csv
-from builder.checks import OutFolder, Range
+from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING, SceneSpec
 from runner.options import RunOptions
@@ -335,7 +335,7 @@ def page(rows: list[dict], args) -> str:
 
 
 def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__)
+    parser = bench_parser(__file__, __doc__, out="the page and rows")
     # None: not given (--from-csv takes them from its rows, and refuses them)
     parser.add_argument(
         "--samples",
@@ -384,19 +384,11 @@ def parser() -> argparse.ArgumentParser:
         action="store_true",
         help=f"only rebuild the page from the committed {ROWS_CSV.name}",
     )
-    parser.add_argument(
-        "--out",
-        type=OutFolder(lammps=False),
-        default=None,
-        help="write the page and rows into this folder instead of runs/bench/ (not with --docs)",
-    )
     return parser
 
 
 def check(args: argparse.Namespace) -> None:
     """Refuse options that do not apply together; fill in the defaults."""
-    if args.out is not None and args.docs:
-        raise InputError("--out and --docs exclude each other")
     run_size = ("samples", "angles", "workers", "top", "top_samples", "walls", "models")
     if args.from_csv:
         given = [name for name in run_size if getattr(args, name) is not None]
@@ -454,7 +446,7 @@ def main(argv: list[str] | None = None) -> int:
         check(args)
     except InputError as error:
         return refuse(__file__, error)
-    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder = page_folder(args)
     folder.mkdir(parents=True, exist_ok=True)
     committed = read_rows_csv(ROWS_CSV) if ROWS_CSV.is_file() else []
 

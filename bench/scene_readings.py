@@ -37,7 +37,7 @@ from common import (
     DOCS,
     bench_parser,
     markdown_table,
-    output_folder,
+    page_folder,
     read_rows_csv,
     refuse,
     study_rows,
@@ -47,7 +47,7 @@ from common import (
 from analysis.fits import Means, fit_walton, reduced_chi2
 from analysis.table import NEAR_SIDE, mean_rows, write_csv
 from analysis.theory import walton_beta
-from builder.checks import OutFolder, Range
+from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING
 from runner.options import RunOptions
@@ -439,7 +439,7 @@ def page(rows: list[dict], args) -> str:
 
 
 def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__)
+    parser = bench_parser(__file__, __doc__, out="the page, figure and rows")
     # None: not given (--from-csv takes them from its rows, and refuses them)
     parser.add_argument(
         "--samples",
@@ -462,13 +462,6 @@ def parser() -> argparse.ArgumentParser:
         help=f"only rebuild the page and figure from the committed {ROWS_CSV.name}",
     )
     parser.add_argument(
-        "--out",
-        type=OutFolder(lammps=False),
-        default=None,
-        help="write the page, figure and rows into this folder instead of runs/bench/ "
-        "(not with --docs)",
-    )
-    parser.add_argument(
         "--top",
         type=TOP,
         default=None,
@@ -486,8 +479,6 @@ def parser() -> argparse.ArgumentParser:
 
 def check(args: argparse.Namespace) -> None:
     """Refuse options that do not apply together; fill in the defaults."""
-    if args.out is not None and args.docs:
-        raise InputError("--out and --docs exclude each other")
     run_size = ("samples", "angles", "workers", "top", "top_samples")
     if args.from_csv:
         given = [name for name in run_size if getattr(args, name) is not None]
@@ -522,7 +513,7 @@ def main(argv: list[str] | None = None) -> int:
         check(args)
     except InputError as error:
         return refuse(__file__, error)
-    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder = page_folder(args)
     folder.mkdir(parents=True, exist_ok=True)
 
     if args.from_csv:

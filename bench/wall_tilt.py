@@ -25,10 +25,11 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import ROOT, bench_parser, markdown_table, output_folder, refuse, write_report
+from common import ROOT, bench_parser, markdown_table, page_folder, refuse, write_report
 
+from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
-from builder.checks import InPath, OutFolder, Range
+from builder.checks import InPath, Range
 from builder.errors import InputError
 from builder.scene import ANGLE
 from runner.impact import run_impact
@@ -89,7 +90,7 @@ def draw(runs: list[dict], path: Path) -> None:
 
 
 def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__)
+    parser = bench_parser(__file__, __doc__, out="the page, figure and series")
     parser.add_argument(
         "--tables",
         type=InPath(needs=("impacts.csv", "study.json")),
@@ -108,20 +109,13 @@ def parser() -> argparse.ArgumentParser:
         default=10,
         help=f"steps between dump frames, {DUMP_EVERY.describe()} (default: 10)",
     )
-    parser.add_argument(
-        "--out",
-        type=OutFolder(lammps=False),
-        default=None,
-        help="write the page and figure here instead of runs/bench/ (not with --docs)",
-    )
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
-        if args.out is not None and args.docs:
-            raise InputError("--out and --docs exclude each other")
+        # the default is checked here; a given folder was by its type
         tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
         if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
             raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
@@ -131,7 +125,7 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as error:
         return refuse(__file__, error)
     study = Study.from_json(tables / "study.json")
-    folder = args.out if args.out is not None else output_folder(args.docs)
+    folder = page_folder(args)
     folder.mkdir(parents=True, exist_ok=True)
     name = f"wall_tilt_{tables.name}"
     work = runs_folder() / "bench" / name
@@ -168,24 +162,27 @@ def main(argv: list[str] | None = None) -> int:
     }
     (folder / f"{name}.json").write_text(json.dumps(series) + "\n")
     body = (
-        f"Study `{study.name}` (tables `{tables}`), gamma = {gamma:g} degrees, the angle of the "
-        "largest mean e unless --gamma; the impacts of largest and smallest e there, run again "
-        f"on the study's scenes and settings with a dump every {args.dump_every} steps. Tilt: "
-        "the slope of the wall surface points' displacement within 0.5 R of the disk centre's "
-        "x (analysis/tilt.py), positive where the surface rises in +x, ahead of the disk. "
-        "Force-weighted: its mean over the contact weighted by the disk's wall-normal contact "
-        "force. tan(gamma) tan(tilt): the share of the normal approach speed that the tilt "
-        "adds from the tangential motion (the disk meets the tilted surface at v_n cos(tilt) "
-        "+ v_t sin(tilt)), which a rebound along the tilted normal returns as wall-normal "
-        "speed; the letter's mechanism needs it comparable to 1 - e, or to e - 1 where e "
-        "passes 1. e against the tilted normal: the rebound's e in the frame of the "
-        "force-weighted tilt; where the tilt explains e > 1, this one is below 1.\n\n"
+        f"Study `{study.name}` (tables `{shown_path(tables)}`), gamma = {gamma:g} degrees, the "
+        "angle of the largest mean e unless --gamma; the impacts of largest and smallest e "
+        "there, run again on the study's scenes and settings with a dump every "
+        f"{args.dump_every} steps. Tilt: the slope of the wall surface points' displacement "
+        "within 0.5 R of the disk centre's x (analysis/tilt.py), positive where the surface "
+        "rises in +x, ahead of the disk. Force-weighted: its mean over the contact weighted "
+        "by the disk's wall-normal contact force. tan(gamma) tan(tilt): the share of the "
+        "normal approach speed that the tilt adds from the tangential motion (the disk meets "
+        "the tilted surface at v_n cos(tilt) + v_t sin(tilt)), which a rebound along the "
+        "tilted normal returns as wall-normal speed; the letter's mechanism needs it "
+        "comparable to 1 - e, or to e - 1 where e passes 1. e against the tilted normal: the "
+        "rebound's e in the frame of the force-weighted tilt; where the tilt explains e > 1, "
+        "this one is below 1.\n\n"
         + markdown_table(header, table)
         + f"\n\n![tilt against time]({figure.name})\n\n*The tilt under the disk against time; "
         "shaded: each impact's contact. Series: "
         f"`{name}.json`.*\n"
     )
-    command = f"python bench/wall_tilt.py --tables {tables} --dump-every {args.dump_every}"
+    command = (
+        f"python bench/wall_tilt.py --tables {shown_path(tables)} --dump-every {args.dump_every}"
+    )
     command += f" --gamma {gamma:g}" if args.gamma is not None else ""
     command += " --docs" if args.docs else ""
     print(body)
