@@ -486,6 +486,13 @@ def run_study_command(args) -> int:
             f"--docs: the {args.preset} preset has no page in docs/; "
             f"presets with one: {', '.join(DOC_PAGES)}"
         )
+    # another preset's page, or docs/' own folders, are not a study's to write
+    taken = {*DOC_PAGES.values(), "figures", "benchmarks"} - {DOC_PAGES.get(args.preset)}
+    if args.docs and doc_name in taken:
+        raise InputError(
+            f"--name {doc_name} with --docs would write docs/{doc_name}, which is not the "
+            f"{args.preset} preset's; give another --name"
+        )
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
         out = docs / doc_name if args.docs else runs_folder() / name

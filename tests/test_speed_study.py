@@ -13,6 +13,7 @@ from analysis.speed import power_law, power_law_range
 from builder.errors import InputError
 from builder.scene import SceneSpec
 from runner.study import LATTICES, PRESETS, Study
+from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables
 
 
@@ -137,3 +138,14 @@ def test_the_speed_page_comes_back_from_its_tables(tmp_path):
     page.unlink()
     report_from_tables(tables, page, resamples=50, preset="speed")
     assert page.read_text() == first
+
+
+@pytest.mark.parametrize("name", ["results", "speed", "figures", "benchmarks"])
+def test_a_reading_cannot_write_over_another_page_in_docs(name, capsys):
+    from runner.__main__ import main
+
+    before = {p: p.stat().st_mtime_ns for p in (ROOT / "docs").rglob("*")}
+    assert main(["study", "grazing", "--name", name, "--docs", "--samples", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"--name {name}" in err[0]
+    assert {p: p.stat().st_mtime_ns for p in (ROOT / "docs").rglob("*")} == before
