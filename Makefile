@@ -20,6 +20,9 @@ export OMPI_MCA_rmaps_base_oversubscribe := 1
 
 APT_PACKAGES := lammps python3-lammps liblammps-dev openmpi-bin libopenmpi-dev \
                 python3-venv g++ make
+# Only the tests need these: a one-node Slurm they start themselves
+# (tests/local_slurm.py), for the study on Slurm and srun --mpi=pmix.
+TEST_APT_PACKAGES := slurmctld slurmd slurm-client munge
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
@@ -49,8 +52,10 @@ setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so bu
 # which that rm does not touch; apt's sandbox user cannot write there, so root
 # downloads them (apt checks their signatures all the same). Another install
 # running holds dpkg's lock: wait for it rather than fail.
-$(STAMPS)/debian:
-	@missing=$$(for p in $(APT_PACKAGES); do \
+$(STAMPS)/debian: PACKAGES = $(APT_PACKAGES)
+$(STAMPS)/debian-test: PACKAGES = $(TEST_APT_PACKAGES)
+$(STAMPS)/debian $(STAMPS)/debian-test:
+	@missing=$$(for p in $(PACKAGES); do \
 	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	    echo "installing Debian packages:" $$missing; \
@@ -132,14 +137,15 @@ build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian
 
 # The study (runner/study.py): tables, fits and figures in runs/<name>/.
 # Killed, it resumes where it stopped. STUDY_ARGS passes options, e.g.
-# make paper STUDY_ARGS="--partitions 2" or STUDY_ARGS="--samples 20".
+# make paper STUDY_ARGS="--workers 8" or STUDY_ARGS="--cluster slurm --jobs 4
+# --cores-per-job 16" (docs/cluster.md).
 demo: setup
 	$(PYTHON) -m runner study demo $(STUDY_ARGS)
 
 paper: setup
 	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
-test: setup setup-pypi
+test: setup setup-pypi $(STAMPS)/debian-test
 	$(PYTHON) -m pytest -q tests
 
 # decks/log.<date>.impact.g++.1 and .2: LAMMPS's logs of the default impact

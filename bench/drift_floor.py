@@ -37,7 +37,8 @@ from reference.trace import event_kind, trace
 from reference.validate import scenes
 from runner.impact import run_scene
 from runner.options import RunOptions
-from runner.study import WORKERS, runs_folder
+from runner.clusters import WORKERS
+from runner.study import runs_folder
 
 SETTINGS = [("verlet", dt) for dt in (2e-3, 1e-3, 5e-4, 2.5e-4)]
 SETTINGS += [("suzuki", dt) for dt in (2e-3, 1e-3, 5e-4)]

@@ -40,7 +40,9 @@ from analysis.claims import claims
 from analysis.estimates import study_estimates
 from analysis.table import write_csv
 from builder.errors import InputError
-from runner.study import ANGLES, SAMPLES, WORKERS, run_study, runs_folder
+from runner.clusters import WORKERS
+from runner.driver import run_study
+from runner.study import ANGLES, SAMPLES, runs_folder
 
 RUNS = runs_folder() / "fact_sensitivity"
 ROWS_CSV = DOCS / "fact_sensitivity.csv"

@@ -51,7 +51,9 @@ from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING
 from runner.options import RunOptions
-from runner.study import ANGLES, SAMPLES, WORKERS, Study, run_study, runs_folder
+from runner.clusters import WORKERS
+from runner.driver import run_study
+from runner.study import ANGLES, SAMPLES, Study, runs_folder
 
 RUNS = runs_folder() / "scene_readings"
 # The committed rows, which --from-csv reads; a run writes its own next to its page.

@@ -25,7 +25,9 @@ from common import bench_parser, markdown_table, write_report
 
 from builder.errors import InputError
 from runner.options import DT, INTEGRATORS, NRESPA
-from runner.study import COT_GAMMA, PRESETS, SAMPLES, WORKERS, Study, run_study
+from runner.clusters import WORKERS
+from runner.driver import run_study
+from runner.study import COT_GAMMA, PRESETS, SAMPLES, Study
 
 ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, the branch's top, sliding
 PASS = 2.0  # standard errors

@@ -30,7 +30,7 @@ from builder.scene import ANGLE, WALL_WIDTH, SceneSpec
 from runner.impact import run_impact
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
-from runner.study import WORKERS
+from runner.clusters import WORKERS
 
 
 def one_impact(args: tuple[float, float, int, str]) -> dict:

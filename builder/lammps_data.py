@@ -125,8 +125,6 @@ def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     # ranks (1.5 times the longest natural length is LAMMPS's own estimate),
     # and from a disk point to both ends of every wall segment it may touch.
     comm = float(max(info["max_natural_length"] * 1.5, cutoff + 2.0 * reach) + skin)
-    # decks/sweep.lmp deletes each of these variables between impacts (index
-    # variables cannot be redefined): a new one must be added there too.
     return (
         "# Scene settings written by the builder; -var on the command line overrides them.\n"
         f"variable cutoff      index {cutoff!r}\n"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import time
 from pathlib import Path
@@ -19,6 +20,7 @@ from builder.cli import (
 from builder.errors import BuildError, InputError
 from builder.scene import CONTACT_A, MODEL_READINGS, N_DISK, RADIUS, ROUGHNESS, VN, speed_warning
 
+from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
 from .lammps_run import LammpsError
 from .options import (
     CHECK_INTERVAL,
@@ -40,12 +42,9 @@ from .options import (
 from .stopping import Stopped, stop_on_signals
 from .study import (
     ANGLES,
-    BATCH,
     COT_GAMMA,
     LATTICES,
-    PARTITIONS,
     SAMPLES,
-    WORKERS,
     EnvironmentFault,
     runs_folder,
 )
@@ -288,26 +287,7 @@ def add_study_arguments(study) -> None:
         help="folder under runs/ (default: the preset): one folder name, "
         "no '/', '..' or whitespace",
     )
-    study.add_argument(
-        "--workers",
-        type=WORKERS,
-        default=2,
-        help=f"worker processes, {WORKERS.describe()} (default: 2)",
-    )
-    study.add_argument(
-        "--partitions",
-        type=PARTITIONS,
-        default=0,
-        help=f"run on this many LAMMPS partitions under mpirun instead of workers, "
-        f"{PARTITIONS.describe()}",
-    )
-    study.add_argument(
-        "--batch-size",
-        type=BATCH,
-        default=16,
-        help=f"with --partitions: impacts per partition in one MPI job, {BATCH.describe()} "
-        "(default: 16)",
-    )
+    add_cluster_arguments(study)
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
     scene = study.add_argument_group("the scene and the run (default: the study's)")
     scene.add_argument("--dt", type=DT, default=None, help=f"time step, {DT.describe()}")
@@ -376,6 +356,149 @@ def add_study_arguments(study) -> None:
     )
 
 
+WALLTIME = re.compile(r"^(\d+-)?\d{1,3}:\d{2}:\d{2}$")
+SCHEDULER = re.compile(r"^([a-z]+://)?[\w.\-]+:\d{1,5}$")
+
+
+def walltime(text: str) -> str:
+    if not WALLTIME.match(text):
+        raise argparse.ArgumentTypeError(f"must be HH:MM:SS or D-HH:MM:SS, got {text!r}")
+    return text
+
+
+walltime.bad_values = ("1h", "10", "a:b:c", "01:00")  # tests/test_bad_input.py
+
+
+def job_memory(text: str) -> str:
+    from dask.utils import parse_bytes
+
+    try:
+        size = parse_bytes(text)
+    except ValueError:
+        size = 0
+    if not text[:1].isdigit() or size < 2**20:
+        raise argparse.ArgumentTypeError(f"must be a size such as 4GiB or 16GB, got {text!r}")
+    return text
+
+
+job_memory.bad_values = ("lots", "-4GB", "0", "GB")
+
+
+def slurm_word(text: str) -> str:
+    if not text or any(c.isspace() or c in "#$;&|'\"`" for c in text):
+        raise argparse.ArgumentTypeError(f"must be one word of Slurm's, got {text!r}")
+    return text
+
+
+slurm_word.bad_values = ("", "a b", "a;b")
+
+
+def scheduler_target(text: str) -> str:
+    if Path(text).is_file() or SCHEDULER.match(text):
+        return text
+    raise argparse.ArgumentTypeError(
+        f"must be a Dask scheduler's address (tcp://host:8786) or its scheduler file, got {text!r}"
+    )
+
+
+scheduler_target.bad_values = ("{tmp}/missing.json", "no address", "tcp://")
+
+
+def retired(replacement: str):
+    """The type of an option that is gone: any value is refused, with what replaces it."""
+
+    def refuse(text: str):
+        raise argparse.ArgumentTypeError(f"is retired: studies run on Dask; {replacement}")
+
+    refuse.bad_values = ("2",)
+    return refuse
+
+
+def add_cluster_arguments(study) -> None:
+    """Where a study's workers come from (runner.clusters)."""
+    group = study.add_argument_group(
+        "the workers: a Dask cluster on this machine (default), Slurm jobs, or a running "
+        "cluster (docs/cluster.md)"
+    )
+    group.add_argument(
+        "--cluster",
+        choices=CLUSTERS,
+        default=None,
+        help="local: worker processes on this machine (default); slurm: Slurm batch jobs "
+        "(dask-jobqueue's SLURMCluster)",
+    )
+    group.add_argument(
+        "--workers",
+        type=WORKERS,
+        default=None,
+        help=f"local worker processes, {WORKERS.describe()} (default: this machine's cores)",
+    )
+    group.add_argument(
+        "--jobs", type=JOBS, default=None, help=f"slurm: batch jobs, {JOBS.describe()} (default: 1)"
+    )
+    group.add_argument(
+        "--cores-per-job",
+        type=CORES_PER_JOB,
+        default=None,
+        help=f"slurm: cores per job, a worker process on each, {CORES_PER_JOB.describe()} "
+        "(default: 1)",
+    )
+    group.add_argument(
+        "--walltime", type=walltime, default=None, help="slurm: each job's time limit, HH:MM:SS"
+    )
+    group.add_argument("--queue", type=slurm_word, default=None, help="slurm: the partition")
+    group.add_argument("--account", type=slurm_word, default=None, help="slurm: the account")
+    group.add_argument(
+        "--memory",
+        type=job_memory,
+        default=None,
+        help="slurm: memory per job, e.g. 8GiB (default: the site's; Slurm's --mem left out)",
+    )
+    group.add_argument(
+        "--scheduler",
+        type=scheduler_target,
+        default=None,
+        metavar="ADDRESS_OR_FILE",
+        help="join this running Dask cluster (a scheduler's address, or the scheduler file "
+        "of dask-mpi or dask scheduler --scheduler-file) instead of making one",
+    )
+    for name in ("--partitions", "--batch-size"):
+        group.add_argument(
+            name, type=retired("use --cluster slurm or --scheduler"), default=None,
+            help=argparse.SUPPRESS,
+        )  # fmt: skip
+
+
+SLURM_ONLY = ("jobs", "cores_per_job", "walltime", "queue", "account", "memory")
+
+
+def cluster_from_args(args, study_folder: Path) -> ClusterSpec:
+    """The cluster a study command asks for; an option the cluster would not
+    use is refused, not ignored."""
+    slurm = args.cluster == "slurm"
+    if args.scheduler and args.cluster:
+        raise InputError("--scheduler joins a running cluster: give it without --cluster")
+    if args.workers is not None and (slurm or args.scheduler):
+        raise InputError(
+            "--workers applies to --cluster local only (Slurm: --jobs and --cores-per-job)"
+        )
+    unused = [d for d in SLURM_ONLY if getattr(args, d) is not None]
+    if unused and not slurm:
+        raise InputError(f"{option(unused[0])} applies to --cluster slurm only")
+    return ClusterSpec(
+        kind=args.cluster or "local",
+        workers=args.workers,
+        jobs=args.jobs or 1,
+        cores_per_job=args.cores_per_job or 1,
+        walltime=args.walltime,
+        queue=args.queue,
+        account=args.account,
+        memory=args.memory,
+        scheduler=args.scheduler,
+        log_directory=study_folder / "slurm" if slurm else None,
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     from .impact import run_impact, run_scene
     from .report import format_table
@@ -419,7 +542,13 @@ def shown(path: Path | str) -> Path:
 
 # runner study's options that only the sweep itself uses, and those that make
 # a study; --from-tables takes neither, --report-only not the first.
-SWEEP_OPTIONS = {"workers": 2, "partitions": 0, "batch_size": 16, "retry_failed": False}
+SWEEP_OPTIONS = {
+    "cluster": None,
+    "workers": None,
+    "scheduler": None,
+    **dict.fromkeys(SLURM_ONLY),
+    "retry_failed": False,
+}
 STUDY_OPTIONS = (
     "samples",
     "angles",
@@ -466,16 +595,13 @@ def refuse_idle_options(args: argparse.Namespace) -> None:
             raise InputError(
                 f"{option(unused[0])} does not apply to --report-only, which runs nothing"
             )
-    if args.partitions == 0 and args.batch_size != SWEEP_OPTIONS["batch_size"]:
-        raise InputError("--batch-size applies to --partitions only")
-    if args.partitions and args.workers != SWEEP_OPTIONS["workers"]:
-        raise InputError("--workers does not apply to --partitions (each partition is a worker)")
 
 
 def run_study_command(args) -> int:
     from analysis.report import report, report_from_tables
 
-    from .study import DOC_PAGES, ROOT, record_wall_clock, run_study, study_from_args
+    from .driver import run_study
+    from .study import DOC_PAGES, ROOT, record_wall_clock, study_from_args
 
     docs = ROOT / "docs"
     refuse_idle_options(args)
@@ -509,18 +635,12 @@ def run_study_command(args) -> int:
             f"results in {shown(summary['page'])}"
         )
         return 0
+    cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
     study = study_from_args(args)
     if not args.report_only:
         start = time.monotonic()
-        if args.partitions:
-            from .partitions import run_study_partitions
-
-            counts = run_study_partitions(
-                study, args.partitions, args.retry_failed, args.batch_size
-            )
-        else:
-            counts = run_study(study, args.workers, args.retry_failed)
-        record_wall_clock(study, time.monotonic() - start, counts, args.partitions or args.workers)
+        counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
+        record_wall_clock(study, time.monotonic() - start, counts)
     summary = report(
         study,
         page=docs / f"{doc_name}.md" if args.docs else None,

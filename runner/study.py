@@ -13,13 +13,12 @@ import math
 import os
 import shutil
 import sys
-import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from analysis.result import UnreadableResult, read_result, write_json_atomically
+from analysis.result import UnreadableResult, read_result
 from builder.checks import Range, require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_scene
@@ -33,9 +32,8 @@ from builder.scene import (
     wall_spring_constant,
 )
 
-from .impact import run_scene
 from .lammps_run import ROOT as LAMMPS_ROOT
-from .lammps_run import STYLE_LIBRARIES, lammps_error
+from .lammps_run import STYLE_LIBRARIES
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -54,9 +52,6 @@ KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
 SAMPLES = Range(1, 10_000, integer=True)
 ANGLES = Range(2, 1_000, integer=True)
 COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
-WORKERS = Range(1, 1_024, integer=True)
-PARTITIONS = Range(0, 4_096, integer=True)
-BATCH = Range(1, 10_000, integer=True)
 MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 85.5
 # Presets whose page is committed under docs/, written only with --docs.
@@ -427,22 +422,21 @@ def study_from_args(args) -> Study:
     return study
 
 
-def record_wall_clock(study: Study, seconds: float, counts: dict, workers: int) -> None:
+def record_wall_clock(study: Study, seconds: float, counts: dict) -> None:
     """Keep in study.json how long the study's run took, if it ran the whole
-    study at once (a resumed study's time is only part of it)."""
+    study at once (a resumed study's time is only part of it), and where the
+    workers' and the driver's time went."""
     path = study.folder / "study.json"
     info = json.loads(path.read_text())
     if counts.get("ran") == len(study.jobs()):
         info["wall_clock"] = {
             "seconds": round(seconds, 1),
-            "workers": workers,
+            "workers": counts.get("workers", 0),
             "cpu": cpu_name(),
             "cores": os.cpu_count(),
+            "worker_seconds": {k: round(v, 1) for k, v in counts["worker_seconds"].items()},
+            "driver_cpu_seconds": round(counts.get("driver_cpu_seconds", 0.0), 2),
         }
-        if "worker_seconds" in counts:
-            info["wall_clock"]["worker_seconds"] = {
-                k: round(v, 1) for k, v in counts["worker_seconds"].items()
-            }
         path.write_text(json.dumps(info, indent=1))
 
 
@@ -539,144 +533,3 @@ def prune(folder: Path) -> None:
     for path in folder.iterdir():
         if path.name not in KEEP and path.name not in SET_ASIDE:
             path.unlink()
-
-
-def mark_failed(job: dict, message: str) -> None:
-    folder = Path(job["folder"])
-    folder.mkdir(parents=True, exist_ok=True)
-    write_json_atomically({**job, "error": message}, folder / "failed.json")
-    print(
-        f"  failed: {job['lattice']} seed {job['seed']} gamma {job['gamma']}: {message}", flush=True
-    )
-
-
-def run_job(study: Study, job: dict) -> dict:
-    """Build and run one impact, keep only the small files; a worker calls this.
-    Returns its e, beta and steps, and where its time went (WORKER_PHASES)."""
-    start = time.perf_counter()
-    folder = study.build(job)
-    built = time.perf_counter()
-    result = run_scene(folder, study.options)
-    prune(folder)
-    total = time.perf_counter() - start
-    lammps = result["wall_seconds"]
-    return {
-        "e": result["e"],
-        "beta": result["beta"],
-        "steps": result["steps"],
-        "build": built - start,
-        "lammps": lammps,
-        "rest": total - (built - start) - lammps,
-    }
-
-
-# Where a worker's time goes, summed over a study's impacts: building the
-# scene (bodies, data file), LAMMPS (its instance, read_data, the run), the
-# rest (analysis, result files).
-WORKER_PHASES = ("build", "lammps", "rest")
-
-
-class WorkerTime:
-    """The seconds of WORKER_PHASES summed over the impacts a study ran."""
-
-    def __init__(self) -> None:
-        self.seconds = dict.fromkeys(WORKER_PHASES, 0.0)
-        self.steps = 0
-
-    def add(self, value: dict) -> None:
-        for phase in WORKER_PHASES:
-            self.seconds[phase] += value[phase]
-        self.steps += value["steps"]
-
-    def line(self) -> str:
-        total = sum(self.seconds.values()) or 1.0
-        parts = ", ".join(
-            f"{phase} {s:.0f} s ({100 * s / total:.0f} %)" for phase, s in self.seconds.items()
-        )
-        rate = self.steps / self.seconds["lammps"] if self.seconds["lammps"] else 0.0
-        return f"workers' time: {parts}; LAMMPS {rate:,.0f} steps per second per worker"
-
-
-class Progress:
-    """done / total, rate and time left, on one line every few seconds."""
-
-    def __init__(self, total: int, already: int):
-        self.total, self.already, self.start = total, already, time.monotonic()
-        self.failed = 0
-
-    def __call__(self, done: int) -> None:
-        elapsed = time.monotonic() - self.start
-        rate = done / elapsed if elapsed > 0 else 0.0
-        left = (self.total - self.already - done) / rate if rate > 0 else float("nan")
-        print(
-            f"  {self.already + done}/{self.total} impacts ({self.failed} failed), "
-            f"{rate * 60:.0f} per minute, {left / 60:.1f} min left",
-            flush=True,
-        )
-
-
-def job_groups(jobs: list[dict], workers: int) -> list[list[int]]:
-    """Indices of ``jobs`` in the groups a worker takes whole.
-
-    A whole sample (every lattice and angle of a seed) if there are enough
-    samples to keep every worker busy to near the end: its bodies are built
-    once, and its wall, which the lattices share, once for all. Otherwise a
-    lattice of a sample, or single impacts. Largest first, for the same reason.
-    """
-    keys = (lambda j: j["seed"], lambda j: (j["seed"], j["lattice"]), lambda j: j["folder"])
-    for key in keys:
-        groups: dict = {}
-        for index, job in enumerate(jobs):
-            groups.setdefault(key(job), []).append(index)
-        if len(groups) >= 8 * workers:  # so the last groups leave little idle time
-            break
-    return sorted(groups.values(), key=len, reverse=True)
-
-
-def run_study(study: Study, workers: int = 2, retry_failed: bool = False) -> dict:
-    """Run every impact of the study that is not finished; returns counts.
-
-    Parameters
-    ----------
-    study : Study
-        The study; its folder is runs/<name>.
-    workers : int
-        Worker processes, each driving LAMMPS through the lammps module.
-    retry_failed : bool
-        Run again the impacts that failed before.
-
-    Returns
-    -------
-    dict
-        Counts of the study's impacts (``Study.summary``): done, failed, pending.
-    """
-    from .pool import run_jobs
-
-    jobs = study.prepare(retry_failed)
-    todo = [j for j in jobs if state(j) == "pending"]
-    groups = job_groups(todo, workers)
-    progress = Progress(len(jobs), len(jobs) - len(todo))
-    print(
-        f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or failed, "
-        f"{len(todo)} to run on {workers} workers",
-        flush=True,
-    )
-
-    def failed(index: int, message: str) -> None:
-        progress.failed += 1
-        job = todo[index]
-        mark_failed(job, lammps_error(Path(job["folder"]) / "log.lammps", message))
-
-    spent = WorkerTime()
-    if todo:
-        run_jobs(
-            lambda job: run_job(study, job),
-            todo,
-            groups,
-            workers,
-            on_done=lambda i, value: spent.add(value),
-            on_failed=failed,
-            on_progress=progress,
-        )
-        print(spent.line(), flush=True)
-    return {**study.summary(jobs), "ran": len(todo), "worker_seconds": spent.seconds}

@@ -4,6 +4,7 @@ project's contact style. Fixtures are in conftest.py, which imports these."""
 from __future__ import annotations
 
 import ctypes
+import json
 import os
 import tempfile
 from pathlib import Path
@@ -26,3 +27,38 @@ def new_lammps(*args: str):
     lmp = lammps(cmdargs=["-screen", "none", "-log", "none", "-nocite", *args])
     ctypes.CDLL(str(STYLE_LIBRARY)).polyline_exp_register(lmp.lmp)
     return lmp
+
+
+# The issue's scenario of a LAMMPS error among good impacts: at v_n = 0.25 c
+# the four 80.5-degree impacts fail (three blow up, one slides off the wall),
+# the four 45-degree ones finish.
+CRASH_SCENARIO = ["--lattices", "random", "--cot-gamma", "0.167", "1.0", "--samples", "4",
+                  "--vn", "0.25"]  # fmt: skip
+
+
+def run_crash_scenario(name: str, *extra: str, env: dict | None = None):
+    """The scenario as a study named ``name``, from a clean folder."""
+    import shutil
+    import subprocess
+    import sys
+
+    shutil.rmtree(RUNS / name, ignore_errors=True)
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *CRASH_SCENARIO]
+    return subprocess.run(
+        [*command, *extra], cwd=ROOT, capture_output=True, text=True, timeout=900, env=env
+    )
+
+
+def genuine_failures(study: Path) -> dict[str, str]:
+    """{folder: error} of the scenario's failed impacts, after checking that
+    exactly the 80.5-degree ones failed, each with the ERROR of its own log,
+    and that the 45-degree ones finished."""
+    from runner.lammps_run import lammps_error
+
+    failed = {str(p.parent): json.loads(p.read_text())["error"] for p in study.rglob("failed.json")}
+    done = {str(p.parent) for p in study.rglob("result.json")}
+    assert sorted(Path(f).name for f in failed) == ["g80.5191"] * 4, failed
+    assert sorted(Path(f).name for f in done) == ["g45.0000"] * 4, done
+    for folder, error in failed.items():
+        assert error == lammps_error(Path(folder) / "log.lammps", "no ERROR in its log")
+    return failed

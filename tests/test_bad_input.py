@@ -38,7 +38,7 @@ WORK = (
     "run_impact",
     "run_scene",
     "run_study",
-    "run_study_partitions",
+    "dask_client",
     "build_scene",
     "write_scene",
     "run_lmp",
@@ -229,6 +229,8 @@ def no_work(monkeypatch, module) -> None:
         for name in (
             "runner.impact",
             "runner.study",
+            "runner.driver",
+            "runner.clusters",
             "runner.lammps_run",
             "builder.scene",
             "analysis.report",

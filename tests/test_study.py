@@ -1,4 +1,4 @@
-"""The study's sweep: resumable, crash-tolerant, the same on partitions."""
+"""The study's sweep on Dask: resumable, crash-tolerant, stoppable."""
 
 from __future__ import annotations
 
@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from runner.pool import run_jobs
-from runner.study import Study, job_groups
-from tests.helpers import ROOT, RUNS
+from runner.driver import job_groups
+from runner.study import Study
+from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
 COMPARED = (
@@ -91,49 +91,107 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
     assert table(name) == uninterrupted
 
 
-def test_two_partitions_give_the_serial_results(uninterrupted):
-    name = "test_study_partitions"
-    subprocess.run(["rm", "-rf", str(RUNS / name)])
-    proc = study(name, "--partitions", "2", "--batch-size", "1")  # 3 MPI jobs, built ahead
-    assert proc.returncode == 0, proc.stderr
-    assert table(name) == uninterrupted
+def test_a_lammps_error_costs_exactly_its_impact():
+    """Each LAMMPS error ends its worker's process; exactly that impact is
+    marked failed, with the error of its own log, and the others finish."""
+    name = "test_study_crashes"
+    proc = run_crash_scenario(name)
+    assert proc.returncode == 1, proc.stderr
+    genuine_failures(RUNS / name)
+    assert proc.stdout.strip().splitlines()[-1].startswith("4 impacts, 4 failed")
 
 
-def test_a_crashing_job_is_reported_and_the_others_finish():
-    def job(x):
-        if x == 3:
-            os._exit(7)  # as LAMMPS does on an error
-        if x == 5:
-            raise ValueError("bad input")
-        return x * x
-
-    done, failed = {}, {}
-    run_jobs(
-        job,
-        list(range(9)),
-        [[0, 1, 2, 3, 4, 5], [6, 7, 8]],
-        2,
-        on_done=done.__setitem__,
-        on_failed=failed.__setitem__,
-    )
-    assert done == {i: i * i for i in (0, 1, 2, 4, 6, 7, 8)}
-    assert set(failed) == {3, 5}
-    assert "exit status 7" in failed[3] and "ValueError: bad input" in failed[5]
+def worker_processes(pid: int) -> list[int]:
+    """The Dask workers below the study's process ``pid`` that run LAMMPS: the
+    processes with an Open MPI daemon (orted) of their own."""
+    return [p for p in descendants(pid) if "orted" in {comm(c) for c in children(p)}]
 
 
-def test_many_crashes_in_many_groups_lose_no_job():
-    def job(x):
-        if x % 7 == 3:
-            os._exit(1)
-        return -x
+def children(pid: int) -> set[int]:
+    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout
+    return {int(p) for p in out.split()}
 
-    jobs = list(range(60))
-    groups = [jobs[i : i + 6] for i in range(0, 60, 6)]
-    for _ in range(5):  # a lost result or a hang shows by chance
-        done, failed = {}, {}
-        run_jobs(job, jobs, groups, 2, on_done=done.__setitem__, on_failed=failed.__setitem__)
-        assert set(failed) == {x for x in jobs if x % 7 == 3}
-        assert done == {x: -x for x in jobs if x % 7 != 3}
+
+def test_a_worker_killed_from_outside_fails_no_impact(uninterrupted):
+    """SIGKILL to a worker in the middle of the study: its impacts run on
+    another worker, none is marked failed, and the results are the same."""
+    name = "test_study_worker_killed"
+    folder = RUNS / name
+    subprocess.run(["rm", "-rf", str(folder)])
+    proc = study(name, "--samples", "20", wait=False)
+    try:
+        deadline = time.monotonic() + 120
+        while not (workers := worker_processes(proc.pid)) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert workers, "no worker started LAMMPS"
+        time.sleep(1.0)
+        os.kill(workers[0], signal.SIGKILL)
+        assert proc.wait(timeout=600) == 0
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert not list(folder.rglob("failed.json"))
+    rows = table(name)
+    assert len(rows) == 60 and set(uninterrupted) < set(rows)
+
+
+def test_run_study_takes_a_notebooks_client(uninterrupted):
+    """run_study(study, client=...) runs on a cluster the caller made, and
+    gives the same e and beta as the command."""
+    from distributed import Client, LocalCluster
+
+    from runner.driver import run_study
+
+    done = Study("test_study_client", lattices=("random",), angles=3, samples=1, n_disk=200)
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=":0") as cluster:
+        with Client(cluster) as client:
+            counts = run_study(done, client=client)
+    assert counts["done"] == 3 and counts["ran"] == 3 and counts["workers"] == 1
+    for result in (RUNS / "test_study_whole" / "random" / "s1").glob("*/result.json"):
+        ours = json.loads((done.folder / "random" / "s1" / result.parent.name / "result.json")
+                          .read_text())  # fmt: skip
+        theirs = json.loads(result.read_text())
+        assert (ours["e"], ours["beta"]) == (theirs["e"], theirs["beta"])
+
+
+def test_a_joined_cluster_that_gives_tasks_up_loses_no_impact(tmp_path):
+    """--scheduler joins a running Dask cluster; where its scheduler gives a
+    task up at the first worker it ends (allowed-failures 0), the driver
+    submits it again and the impacts' folders decide: exactly the genuine
+    failures."""
+    scheduler_file = tmp_path / "scheduler.json"
+    env = {**os.environ, "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}
+    dask = [str(Path(sys.executable).parent / "dask")]
+    daemons = [
+        subprocess.Popen(
+            [*dask, "scheduler", "--scheduler-file", str(scheduler_file), "--port", "0",
+             "--no-dashboard"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        )
+    ]  # fmt: skip
+    try:
+        deadline = time.monotonic() + 60
+        while not scheduler_file.exists() and time.monotonic() < deadline:
+            time.sleep(0.2)
+        daemons.append(
+            subprocess.Popen(
+                [*dask, "worker", "--scheduler-file", str(scheduler_file), "--nworkers", "2",
+                 "--nthreads", "1", "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )  # fmt: skip
+        name = "test_study_joined"
+        proc = run_crash_scenario(name, "--scheduler", str(scheduler_file))
+        assert proc.returncode == 1, proc.stderr
+        genuine_failures(RUNS / name)
+    finally:
+        for daemon in reversed(daemons):
+            daemon.terminate()
+        for daemon in reversed(daemons):
+            try:
+                daemon.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                daemon.kill()
+                daemon.wait()
 
 
 @pytest.mark.parametrize(
@@ -259,19 +317,13 @@ def alive(pid: int) -> bool:
     return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
-@pytest.mark.parametrize(
-    "signum, extra, worker",
-    [
-        (signal.SIGTERM, (), "python"),
-        (signal.SIGINT, (), "python"),
-        (signal.SIGTERM, ("--partitions", "2", "--batch-size", "3"), "lmp"),
-    ],
-)
-def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, worker):
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_stops_the_study_and_every_process_below_it(signum):
     name = "test_study_signal"
     folder = RUNS / name
     subprocess.run(["rm", "-rf", str(folder)])
-    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY, *extra]
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *TINY,
+               "--samples", "8"]  # fmt: skip
     # its own session, so that a failing test can still clean up the whole group
     proc = subprocess.Popen(
         command,
@@ -287,7 +339,7 @@ def test_a_signal_stops_the_study_and_every_process_below_it(signum, extra, work
         while time.monotonic() < deadline:  # until the impacts are running
             below = descendants(proc.pid)
             names = [comm(p) for p in below if alive(p)]
-            if sum(n.startswith(worker) for n in names) >= 2:  # two workers or ranks
+            if names.count("orted") >= 2:  # two workers with LAMMPS (MPI singletons)
                 break
             time.sleep(0.2)
         time.sleep(1.0)  # inside LAMMPS by now
@@ -509,3 +561,33 @@ def test_a_study_on_a_larger_disk_is_the_same_study_scaled():
         assert float(two["omega"]) == pytest.approx(float(one["omega"]) / 2, abs=1e-7)
         # read off series.dat's rows, every 40 steps: 0.16 at R = 2
         assert float(two["contact_time"]) == pytest.approx(2 * float(one["contact_time"]), abs=0.17)
+
+
+@pytest.mark.parametrize(
+    "options, words",
+    [
+        (
+            ["--partitions", "2"],
+            "argument --partitions: is retired: studies run on Dask; use --cluster",
+        ),
+        (
+            ["--batch-size", "16"],
+            "argument --batch-size: is retired: studies run on Dask; use --cluster",
+        ),
+        (["--walltime", "01:00:00"], "--walltime applies to --cluster slurm only"),
+        (["--jobs", "2"], "--jobs applies to --cluster slurm only"),
+        (["--cluster", "slurm", "--workers", "2"], "--workers applies to --cluster local only"),
+        (["--cluster", "local", "--scheduler", "tcp://a:8786"], "--scheduler joins a running"),
+    ],
+)
+def test_a_cluster_option_that_does_not_apply_is_refused(options, words, capsys):
+    from runner.__main__ import main
+
+    name = "test_study_cluster_options"
+    try:
+        status = main(["study", "demo", "--name", name, *TINY, *options])
+    except SystemExit as stop:
+        status = stop.code
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and len(err.splitlines()) == 1 and words in err, err
+    assert not (RUNS / name).exists()

@@ -1,0 +1,167 @@
+"""Where a study's workers come from: a Dask cluster on this machine, Slurm
+jobs (dask-jobqueue), or a Dask cluster that is already running.
+
+Every worker is a process with one thread: LAMMPS runs in it, in-process, and
+an error of Debian's LAMMPS ends the process, which the worker's nanny starts
+again. What the cluster's scheduler counts as failures does not decide
+anything here (runner.tasks does): clusters made here let a task be retried
+ALLOWED_FAILURES times before the scheduler gives it up.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from builder.checks import Range
+from builder.errors import InputError
+
+CLUSTERS = ("local", "slurm")
+WORKERS = Range(1, 1_024, integer=True)
+JOBS = Range(1, 10_000, integer=True)
+CORES_PER_JOB = Range(1, 1_024, integer=True)
+# A worker that dies takes the tasks it held with it, and the scheduler counts
+# a failure against each (runner.tasks); this only keeps the scheduler from
+# giving a task up before runner.tasks has settled its impacts.
+ALLOWED_FAILURES = 1_000
+# Environment a Slurm job's workers need from this process: the project's
+# folders (runs, the Poisson cache) and Open MPI's leave to run as root.
+PASSED_ON = ("IMPACT_RUNS", "IMPACT_POISSON_CACHE", "OMPI_ALLOW_RUN_AS_ROOT",
+             "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM")  # fmt: skip
+
+
+@dataclass(frozen=True)
+class ClusterSpec:
+    """Which workers: ``kind`` local or slurm, or ``scheduler`` to join one."""
+
+    kind: str = "local"
+    workers: int | None = None  # local: worker processes (None: this machine's cores)
+    jobs: int = 1  # slurm: batch jobs
+    cores_per_job: int = 1  # slurm: worker processes (one core each) per job
+    walltime: str | None = None  # slurm: HH:MM:SS (None: dask-jobqueue's config)
+    queue: str | None = None
+    account: str | None = None
+    memory: str | None = None  # slurm: per job (None: the site's default, --mem left out)
+    scheduler: str | None = None  # a running cluster's address or scheduler file
+    log_directory: Path | None = None  # slurm: the jobs' output files
+
+    def size(self) -> int:
+        """How many workers the spec asks for (a joined cluster: 0, unknown)."""
+        if self.scheduler:
+            return 0
+        if self.kind == "slurm":
+            return self.jobs * self.cores_per_job
+        return self.workers or os.cpu_count() or 1
+
+
+def worker_environment() -> list[str]:
+    """Shell lines a Slurm job runs before its workers: this interpreter's
+    folder first on PATH (the lammps module's and lmp's Python), and PASSED_ON."""
+    lines = [f'export PATH="{Path(sys.executable).parent}:$PATH"']
+    lines += [f'export {name}="{os.environ[name]}"' for name in PASSED_ON if name in os.environ]
+    return lines
+
+
+def make_cluster(spec: ClusterSpec):
+    """A new Dask cluster for ``spec`` (not for a joined one)."""
+    if spec.kind == "local":
+        from distributed import LocalCluster
+
+        return LocalCluster(
+            n_workers=spec.size(),
+            threads_per_worker=1,
+            processes=True,
+            silence_logs=logging.ERROR,
+            dashboard_address=":8787",  # or a free port, if that one is taken
+        )
+    from dask_jobqueue import SLURMCluster
+
+    options = {"walltime": spec.walltime, "queue": spec.queue, "account": spec.account}
+    if spec.log_directory:
+        spec.log_directory.mkdir(parents=True, exist_ok=True)
+    cluster = SLURMCluster(
+        cores=spec.cores_per_job,
+        processes=spec.cores_per_job,  # one thread per worker
+        # Dask's memory limit needs a figure; Slurm's --mem is left to the
+        # site's default unless --memory is given
+        memory=spec.memory or f"{spec.cores_per_job}GiB",
+        job_directives_skip=[] if spec.memory else ["--mem"],
+        python=sys.executable,
+        job_script_prologue=worker_environment(),
+        log_directory=str(spec.log_directory) if spec.log_directory else None,
+        silence_logs=logging.ERROR,
+        scheduler_options={"dashboard_address": ":8787"},
+        **{key: value for key, value in options.items() if value is not None},
+    )
+    cluster.scale(jobs=spec.jobs)
+    return cluster
+
+
+# Slurm's states of a job that has not ended.
+LIVE_STATES = "PENDING,RUNNING,CONFIGURING,COMPLETING,SUSPENDED,REQUEUED,RESIZING"
+
+
+def replace_ended_jobs(client) -> int:
+    """Submit a new batch job for each of the client's cluster's jobs that has
+    ended (a walltime, scancel) while the study runs; returns how many.
+
+    dask-jobqueue keeps an ended job of several workers in its plan, so
+    neither scale() nor adapt() would replace it (seen with dask-jobqueue
+    0.9.0 on Slurm 22.05).
+    """
+    cluster = getattr(client, "cluster", None)
+    jobs = {name: job for name, job in getattr(cluster, "workers", {}).items()
+            if getattr(job, "job_id", None)}  # fmt: skip
+    if not jobs or not hasattr(cluster, "job_cls"):
+        return 0
+    listed = subprocess.run(
+        ["squeue", "--noheader", "--format=%i", f"--states={LIVE_STATES}",
+         f"--jobs={','.join(job.job_id for job in jobs.values())}"],
+        capture_output=True, text=True,
+    )  # fmt: skip
+    if listed.returncode not in (0, 1):  # 1: none of them is known any more
+        return 0
+    live = set(listed.stdout.split())
+    ended = [name for name, job in jobs.items() if job.job_id not in live]
+    if ended:
+        wanted = len(cluster.worker_spec)
+        for name in ended:  # forgotten, so that a new job may take the name
+            cluster.worker_spec.pop(name, None)
+            cluster.loop.add_callback(cluster.workers.pop(name).close)
+        cluster.scale(jobs=wanted)
+    return len(ended)
+
+
+@contextlib.contextmanager
+def dask_client(spec: ClusterSpec) -> Iterator:
+    """A Client of the cluster ``spec`` names; a cluster made here is closed
+    (local workers end, Slurm jobs are cancelled) whatever ends the block."""
+    import dask
+    from distributed import Client
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+        if spec.scheduler:
+            target = spec.scheduler
+            try:
+                client = (
+                    Client(scheduler_file=target, timeout="30s")
+                    if Path(target).is_file()
+                    else Client(target, timeout="30s")
+                )
+            except (OSError, TimeoutError, ValueError) as error:
+                raise InputError(f"--scheduler {target}: cannot join it ({error})") from None
+            with client:
+                yield client
+            return
+        cluster = make_cluster(spec)
+        try:
+            with Client(cluster) as client:
+                yield client
+        finally:
+            cluster.close()
