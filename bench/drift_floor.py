@@ -35,9 +35,9 @@ from builder.scene import build_scene
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes
+from runner.clusters import WORKERS
 from runner.impact import run_scene
 from runner.options import RunOptions
-from runner.clusters import WORKERS
 from runner.study import runs_folder
 
 SETTINGS = [("verlet", dt) for dt in (2e-3, 1e-3, 5e-4, 2.5e-4)]

@@ -57,9 +57,9 @@ from analysis.table import write_csv
 from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING, SceneSpec
-from runner.options import RunOptions
 from runner.clusters import WORKERS
 from runner.driver import run_study
+from runner.options import RunOptions
 from runner.study import ANGLES, SAMPLES, Study, runs_folder
 
 RUNS = runs_folder() / "model_readings"

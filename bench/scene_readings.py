@@ -50,9 +50,9 @@ from analysis.theory import walton_beta
 from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING
-from runner.options import RunOptions
 from runner.clusters import WORKERS
 from runner.driver import run_study
+from runner.options import RunOptions
 from runner.study import ANGLES, SAMPLES, Study, runs_folder
 
 RUNS = runs_folder() / "scene_readings"

@@ -24,9 +24,9 @@ import numpy as np
 from common import bench_parser, markdown_table, write_report
 
 from builder.errors import InputError
-from runner.options import DT, INTEGRATORS, NRESPA
 from runner.clusters import WORKERS
 from runner.driver import run_study
+from runner.options import DT, INTEGRATORS, NRESPA
 from runner.study import COT_GAMMA, PRESETS, SAMPLES, Study
 
 ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, the branch's top, sliding

@@ -27,10 +27,10 @@ from common import SEED_COUNT, bench_parser, distinct, markdown_table, refuse, w
 
 from builder.errors import BuildError, InputError
 from builder.scene import ANGLE, WALL_WIDTH, SceneSpec
+from runner.clusters import WORKERS
 from runner.impact import run_impact
 from runner.lammps_run import LammpsError
 from runner.options import RunOptions
-from runner.clusters import WORKERS
 
 
 def one_impact(args: tuple[float, float, int, str]) -> dict:
