@@ -1,16 +1,24 @@
 #!/bin/bash
-#SBATCH --job-name=impacts
-#SBATCH --ntasks=64
+# A study on Slurm: this small job is the driver; it submits the workers as
+# batch jobs of their own (dask-jobqueue), replaces any that end early, and
+# cancels them when it ends. Submit it from the project's folder (make setup
+# done there):
+#
+#   sbatch docs/slurm_study.sh                       # the paper study
+#   sbatch docs/slurm_study.sh demo --samples 8      # any study; options override
+#
+# Killed by its time limit or scancel, it cancels the workers' jobs and exits;
+# submit it again and it runs what is missing.
+#SBATCH --job-name=impacts-driver
+#SBATCH --ntasks=1
 #SBATCH --cpus-per-task=1
-#SBATCH --time=02:00:00
-#SBATCH --output=impacts-%j.out
-
-# One rank per partition; the Python driver runs on the first node and only
-# builds scenes and reads results, so it needs no cores of its own.
-module load lammps openmpi python      # or whatever provides lmp, mpirun, python3
+#SBATCH --time=12:00:00
+#SBATCH --output=impacts-driver-%j.out
+set -euo pipefail
 cd "$SLURM_SUBMIT_DIR"
-source .venv/bin/activate               # numpy, scipy, MDAnalysis, matplotlib (make setup)
-export PATH="$PWD/.venv/bin:$PATH"      # lmp's embedded Python must find the same packages
-
-IMPACT_MPIRUN="srun --ntasks=$SLURM_NTASKS" \
-    python -m runner study paper --partitions "$SLURM_NTASKS"
+study=${1:-paper}
+shift || true
+# 4 jobs of 16 workers, each job at most 2 hours: set these to your site's
+# nodes and limits (and --queue, --account, --memory).
+exec .venv/bin/python -m runner study "$study" --cluster slurm --jobs 4 --cores-per-job 16 \
+    --walltime 02:00:00 "$@"

@@ -66,12 +66,13 @@ def command_line(variables: dict[str, str], log: Path, deck: Path = DECK) -> lis
 
 
 def mpi_launcher(nprocs: int) -> list[str]:
-    """mpirun for ``nprocs`` ranks, nothing for one. IMPACT_MPIRUN replaces it
-    (e.g. "srun" under Slurm, which knows the ranks itself)."""
+    """mpirun for ``nprocs`` ranks, nothing for one. IMPACT_MPIRUN replaces
+    mpirun, with ``-n nprocs`` after its words: "srun --mpi=pmix" under Slurm
+    (OpenMPI's direct launch needs PMIx; plain srun fails on Debian 12)."""
     if nprocs == 1:
         return []
     if os.environ.get("IMPACT_MPIRUN"):
-        return os.environ["IMPACT_MPIRUN"].split()
+        return os.environ["IMPACT_MPIRUN"].split() + ["-n", str(nprocs)]
     if shutil.which("mpirun") is None:
         raise LammpsError(
             "mpirun not found: install openmpi-bin (make setup) to run on several ranks"
