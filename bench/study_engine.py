@@ -1,10 +1,10 @@
 """The study's engine: Dask against the process pool it replaced, and what its
 serial parts project at many workers.
 
-    python bench/study_engine.py [--samples 16] [--angles 16] [--repeats 3]
+    python bench/study_engine.py [--preset demo] [--samples 16] [--angles 16] [--repeats 3]
                                  [--before 1a8c74d] [--tasks 10000] [--docs]
 
-1. The same study (the demo's random disk, samples x angles impacts) run by
+1. The same study (a preset's lattices, samples x angles impacts) run by
    this tree on a local Dask cluster and by the tree at --before (the last
    commit with runner/pool.py), interleaved and repeated, on a Poisson cache
    warmed once before: wall time of the whole command and of the runs.
@@ -33,7 +33,8 @@ from common import ROOT, add_repeats, bench_parser, markdown_table, median, writ
 
 from builder.checks import Range
 from runner.clusters import ClusterSpec, dask_client
-from runner.study import ANGLES, SAMPLES, runs_folder
+from runner.driver import job_groups
+from runner.study import ANGLES, PRESETS, SAMPLES, runs_folder
 
 TASKS = Range(100, 1_000_000, integer=True)
 # The partitions path's builder (issue 28, measured on this machine): 40 ms
@@ -43,17 +44,17 @@ PARTITIONS_FED = (130 / 72, 180 / 40)
 WORKERS = (16, 64, 256)
 
 
-def study_command(name: str, samples: int, angles: int) -> list[str]:
-    return [sys.executable, "-m", "runner", "study", "demo", "--name", name,
+def study_command(preset: str, name: str, samples: int, angles: int) -> list[str]:
+    return [sys.executable, "-m", "runner", "study", preset, "--name", name,
             "--samples", str(samples), "--angles", str(angles)]  # fmt: skip
 
 
-def run(tree: Path, name: str, samples: int, angles: int, env: dict) -> dict:
+def run(tree: Path, preset: str, name: str, samples: int, angles: int, env: dict) -> dict:
     """One study, from scratch, by the project at ``tree``."""
     shutil.rmtree(runs_folder() / name, ignore_errors=True)
     start = time.monotonic()
     proc = subprocess.run(
-        study_command(name, samples, angles),
+        study_command(preset, name, samples, angles),
         cwd=tree,
         env={**env, "PYTHONPATH": str(tree)},  # that tree's packages, not the installed ones
         capture_output=True,
@@ -102,6 +103,10 @@ def scheduler_cost(tasks: int, idle: float = 10.0) -> dict:
 def parser():
     parser = bench_parser(__file__, __doc__)
     parser.add_argument(
+        "--preset", choices=("demo", "paper"), default="demo",
+        help="the study's preset: its lattices and settings (default: demo)",
+    )  # fmt: skip
+    parser.add_argument(
         "--samples", type=SAMPLES, default=16, help=f"samples, {SAMPLES.describe()} (default: 16)"
     )
     parser.add_argument(
@@ -140,11 +145,12 @@ def main(argv: list[str] | None = None) -> int:
         env = {**os.environ, "IMPACT_POISSON_CACHE": str(Path(tmp) / "poisson"),
                "IMPACT_RUNS": str(runs_folder())}  # fmt: skip
         trees = {"Dask, local cluster (this tree)": ROOT, f"process pool ({args.before})": before}
-        run(ROOT, "bench_engine_warm", args.samples, args.angles, env)
+        run(ROOT, args.preset, "bench_engine_warm", args.samples, args.angles, env)
         times: dict[str, list[dict]] = {way: [] for way in trees}
         for _ in range(args.repeats):
             for k, (way, tree) in enumerate(trees.items()):
-                times[way].append(run(tree, f"bench_engine_{k}", args.samples, args.angles, env))
+                name = f"bench_engine_{k}"
+                times[way].append(run(tree, args.preset, name, args.samples, args.angles, env))
                 print(f"{way}: {times[way][-1]['command']:.1f} s", flush=True)
         subprocess.run(["git", "worktree", "remove", "--force", str(before)], cwd=ROOT)
     cost = scheduler_cost(args.tasks)
@@ -166,7 +172,10 @@ def main(argv: list[str] | None = None) -> int:
         for r in ours
     ])  # fmt: skip
     per_impact = median([sum(r["clock"]["worker_seconds"].values()) / r["impacts"] for r in ours])
-    groups = args.angles  # a task is a sample's impacts: one lattice here
+    lattices = PRESETS[args.preset].lattices
+    synthetic = [{"seed": s, "lattice": la, "folder": f"{la}/{s}/{g}"} for s in range(args.samples)
+                 for la in lattices for g in range(args.angles)]  # fmt: skip
+    groups = len(synthetic) // len(job_groups(synthetic, os.cpu_count() or 1))
     projection = []
     for n in WORKERS:
         efficiency = min(1.0, (1 - cost["housekeeping"]) * per_impact / (n * serial))
@@ -174,7 +183,8 @@ def main(argv: list[str] | None = None) -> int:
         projection.append([str(n), f"{efficiency:.2f}",
                            f"{partitions[0]:.2f} to {partitions[1]:.2f}"])  # fmt: skip
     body = (
-        f"The demo's random disk, {args.samples} samples x {args.angles} angles ({impacts} "
+        f"The {args.preset} preset's lattices ({', '.join(PRESETS[args.preset].lattices)}), "
+        f"{args.samples} samples x {args.angles} angles ({impacts} "
         f"impacts), default settings, 2 local workers each way (the machine's cores), on a "
         f"Poisson cache warmed by one run before; medians of {args.repeats} interleaved runs. "
         "Command: the whole `python -m runner study` command; runs: the study's own "
@@ -215,9 +225,9 @@ def main(argv: list[str] | None = None) -> int:
                 ],
             ],
         )  # fmt: skip
-        + f"\n\nA task is a sample's {groups} impacts, so Dask's cost per impact is a "
-        f"{groups}th of a task's. Idle, the driver process (a local cluster's scheduler "
-        f"with the study's settings, runner.clusters.HOUSEKEEPING) uses "
+        + f"\n\nA task is {groups} impacts (runner.driver.job_groups), so Dask's cost per "
+        f"impact is a {groups}th of a task's. Idle, the driver process (a local cluster's "
+        f"scheduler with the study's settings, runner.clusters.HOUSEKEEPING) uses "
         f"{cost['housekeeping']:.1%} of a core: its heartbeats and health checks, paid per "
         "second whatever the impacts, so its share per impact falls as workers are added. "
         "The serial part s is the driver's CPU time less that, over the impacts.\n\n"
@@ -231,7 +241,8 @@ def main(argv: list[str] | None = None) -> int:
         + markdown_table(["workers", "Dask (this tree)", "partitions (before)"], projection)
     )
     command = (
-        f"python bench/study_engine.py --samples {args.samples} --angles {args.angles} "
+        f"python bench/study_engine.py --preset {args.preset} --samples {args.samples} "
+        f"--angles {args.angles} "
         f"--before {args.before} --tasks {args.tasks} --repeats {args.repeats}"
         + (" --docs" if args.docs else "")
     )

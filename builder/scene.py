@@ -369,10 +369,19 @@ def place_disk(
     """
     direction = velocity / np.linalg.norm(velocity)
     touch = -disk_surface[:, 1].min() + target_gap  # centre height at contact
-    safe = wall_row[:, 1].max() + touch + target_gap  # no point in range up here
+    wall_top = wall_row[:, 1].max()
+    safe = wall_top + touch + target_gap  # no point in range up here
     centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
+    lowest = np.argsort(disk_surface[:, 1])[:8]
     for _ in range(10000):
-        excess = distance_to_polyline(disk_surface + centre, wall_row).min() - target_gap
+        points = disk_surface + centre
+        # Only points that may be nearest: a point is at least its height over
+        # the wall's top from the wall, and the lowest few bound the nearest
+        # distance from above. The same distances, minimum and centre, for a
+        # fraction of the points.
+        bound = distance_to_polyline(points[lowest], wall_row).min()
+        near = points[:, 1] - wall_top <= bound
+        excess = distance_to_polyline(points[near], wall_row).min() - target_gap
         if excess < 1e-9 * target_gap:
             return centre
         centre = centre + excess * direction

@@ -363,3 +363,30 @@ def test_steep_segments_give_the_constrained_delaunay_triangulation():
     # and the body is still a planar network with its whole surface bonded
     assert crossing_pairs(points, disk.springs) == []
     assert set(boundary) <= {tuple(e) for e in disk.springs.tolist()}
+
+
+def full_sphere_tracing(disk_surface, wall_row, velocity, target_gap, contact_x):
+    """place_disk with the minimum over every disk point at every step."""
+    direction = velocity / np.linalg.norm(velocity)
+    touch = -disk_surface[:, 1].min() + target_gap
+    safe = wall_row[:, 1].max() + touch + target_gap
+    centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
+    while True:
+        excess = distance_to_polyline(disk_surface + centre, wall_row).min() - target_gap
+        if excess < 1e-9 * target_gap:
+            return centre
+        centre = centre + excess * direction
+
+
+@pytest.mark.parametrize("lattice", ["random", "triangular"])
+def test_placing_the_disk_over_the_points_that_may_be_nearest_gives_the_same_centre(lattice):
+    from builder.scene import place_disk
+
+    spec = SceneSpec(lattice=lattice, seed=2)
+    disk, wall = build_bodies(spec)
+    surface, row = disk.points[disk.surface], wall.points[wall.surface]
+    for gamma in (0.0, 20.0, 45.0, 70.0, 80.5):
+        velocity = 0.1 * np.array([np.tan(np.radians(gamma)), -1.0])
+        for contact_x in (0.0, -0.7):
+            args = (surface, row, velocity, 0.12, contact_x)
+            assert np.array_equal(place_disk(*args), full_sphere_tracing(*args))  # bit for bit
