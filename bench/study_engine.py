@@ -8,14 +8,16 @@ serial parts project at many workers.
    this tree on a local Dask cluster and by the tree at --before (the last
    commit with runner/pool.py), interleaved and repeated, on a Poisson cache
    warmed once before: wall time of the whole command and of the runs.
-2. This tree's serial time per impact: the driver process's CPU time
-   (driver and scheduler) over the impacts, from the runs' study.json.
-3. Dask's cost per task: --tasks no-op tasks through a local cluster's
-   scheduler, one process per core, one thread each.
+2. The driver process's CPU time (driver and scheduler) over the impacts,
+   from the runs' study.json.
+3. On the study's own local cluster: the driver process's CPU share while
+   idle (housekeeping h), and Dask's cost per task from --tasks no-op tasks;
+   over a task's impacts, the serial time per impact s.
 4. The efficiency these project at 16 to 256 workers: a worker needs an
-   impact every t seconds, the serial parts give one every s, so at N
-   workers the efficiency is min(1, t / (N s)). Beside it, the partitions
-   path that Dask replaced, bound by its one builder process.
+   impact every t seconds, the driver gives one every s with 1 - h of its
+   core, so at N workers the efficiency is min(1, (1 - h) t / (N s)).
+   Beside it, the partitions path that Dask replaced, bound by its one
+   builder process.
 """
 
 from __future__ import annotations
@@ -166,16 +168,15 @@ def main(argv: list[str] | None = None) -> int:
         [r["command"] for r in ours]
     )
     driver = median([r["clock"]["driver_cpu_seconds"] / r["impacts"] for r in ours])
-    # the part that grows with the impacts: the driver's CPU less housekeeping
-    serial = median([
-        (r["clock"]["driver_cpu_seconds"] - cost["housekeeping"] * r["runs"]) / r["impacts"]
-        for r in ours
-    ])  # fmt: skip
     per_impact = median([sum(r["clock"]["worker_seconds"].values()) / r["impacts"] for r in ours])
     lattices = PRESETS[args.preset].lattices
     synthetic = [{"seed": s, "lattice": la, "folder": f"{la}/{s}/{g}"} for s in range(args.samples)
                  for la in lattices for g in range(args.angles)]  # fmt: skip
     groups = len(synthetic) // len(job_groups(synthetic, os.cpu_count() or 1))
+    # what grows with the impacts: the client's and scheduler's CPU per task,
+    # over a task's impacts (the driver's whole CPU time also holds the
+    # housekeeping, paid per second)
+    serial = cost["cpu"] / groups
     projection = []
     for n in WORKERS:
         efficiency = min(1.0, (1 - cost["housekeeping"]) * per_impact / (n * serial))
@@ -209,11 +210,6 @@ def main(argv: list[str] | None = None) -> int:
                     f"{driver / per_impact:.2%}",
                 ],
                 [
-                    "... less its idle housekeeping: the serial part, s",
-                    f"{serial * 1e3:.2f} ms",
-                    f"{serial / per_impact:.2%}",
-                ],
-                [
                     f"Dask, a no-op task ({args.tasks:,} tasks), wall",
                     f"{cost['wall'] * 1e3:.2f} ms",
                     f"{cost['wall'] / per_impact:.2%}",
@@ -223,6 +219,11 @@ def main(argv: list[str] | None = None) -> int:
                     f"{cost['cpu'] * 1e3:.2f} ms",
                     f"{cost['cpu'] / per_impact:.2%}",
                 ],
+                [
+                    f"... over a task's {groups} impacts: the serial part, s",
+                    f"{serial * 1e3:.3f} ms",
+                    f"{serial / per_impact:.3%}",
+                ],
             ],
         )  # fmt: skip
         + f"\n\nA task is {groups} impacts (runner.driver.job_groups), so Dask's cost per "
@@ -230,11 +231,12 @@ def main(argv: list[str] | None = None) -> int:
         f"scheduler with the study's settings, runner.clusters.HOUSEKEEPING) uses "
         f"{cost['housekeeping']:.1%} of a core: its heartbeats and health checks, paid per "
         "second whatever the impacts, so its share per impact falls as workers are added. "
-        "The serial part s is the driver's CPU time less that, over the impacts.\n\n"
+        "The serial part s is what grows with the impacts: Dask's CPU time per task "
+        "(client and scheduler) over a task's impacts.\n\n"
         "## Projected efficiency\n\n"
         f"Efficiency min(1, (1 - h) t / (N s)) with h = {cost['housekeeping']:.3f} of a core, "
         f"t = {per_impact * 1e3:.0f} ms per impact on a worker "
-        f"and s = {serial * 1e3:.2f} ms of the driver process per impact; the partitions path "
+        f"and s = {serial * 1e3:.3f} ms of the driver process per impact; the partitions path "
         "was bound by its one builder process, which fed 1.8 to 4.5 ranks (40 to 72 ms per "
         "impact against 130 to 180 ms of LAMMPS). On paper, from the figures above: a real "
         "cluster adds its network and file system.\n\n"
