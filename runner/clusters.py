@@ -115,35 +115,40 @@ def make_cluster(spec: ClusterSpec):
 LIVE_STATES = "PENDING,RUNNING,CONFIGURING,COMPLETING,SUSPENDED,REQUEUED,RESIZING"
 
 
-def replace_ended_jobs(client) -> int:
+def replace_ended_jobs(client, wanted: int) -> int:
     """Submit a new batch job for each of the client's cluster's jobs that has
-    ended (a walltime, scancel) while the study runs; returns how many.
+    ended (a walltime, scancel) while the study runs, up to ``wanted`` jobs;
+    returns how many were submitted.
 
-    dask-jobqueue keeps an ended job of several workers in its plan, so
-    neither scale() nor adapt() would replace it (seen with dask-jobqueue
-    0.9.0 on Slurm 22.05).
+    dask-jobqueue keeps an ended job of several workers in its plan, or drops
+    it without replacing it, depending on when it notices (seen with
+    dask-jobqueue 0.9.0 on Slurm 22.05), so neither scale() nor adapt() is
+    enough alone.
     """
     cluster = getattr(client, "cluster", None)
-    jobs = {name: job for name, job in getattr(cluster, "workers", {}).items()
+    if not hasattr(cluster, "job_cls") or not wanted:
+        return 0
+    jobs = {name: job for name, job in cluster.workers.items()
             if getattr(job, "job_id", None)}  # fmt: skip
-    if not jobs or not hasattr(cluster, "job_cls"):
-        return 0
-    listed = subprocess.run(
-        ["squeue", "--noheader", "--format=%i", f"--states={LIVE_STATES}",
-         f"--jobs={','.join(job.job_id for job in jobs.values())}"],
-        capture_output=True, text=True,
-    )  # fmt: skip
-    if listed.returncode not in (0, 1):  # 1: none of them is known any more
-        return 0
-    live = set(listed.stdout.split())
-    ended = [name for name, job in jobs.items() if job.job_id not in live]
-    if ended:
-        wanted = len(cluster.worker_spec)
-        for name in ended:  # forgotten, so that a new job may take the name
-            cluster.worker_spec.pop(name, None)
-            cluster.loop.add_callback(cluster.workers.pop(name).close)
+    live: set[str] = set()
+    if jobs:
+        listed = subprocess.run(
+            ["squeue", "--noheader", "--format=%i", f"--states={LIVE_STATES}",
+             f"--jobs={','.join(job.job_id for job in jobs.values())}"],
+            capture_output=True, text=True,
+        )  # fmt: skip
+        if listed.returncode not in (0, 1):  # 1: none of them is known any more
+            return 0
+        live = set(listed.stdout.split())
+    for name in [name for name, job in jobs.items() if job.job_id not in live]:
+        cluster.worker_spec.pop(name, None)  # forgotten, so that a new job may take the name
+        cluster.loop.add_callback(cluster.workers.pop(name).close)
+    for name in [name for name in cluster.worker_spec if name not in cluster.workers]:
+        cluster.worker_spec.pop(name)  # planned, but its job is gone
+    missing = wanted - len(cluster.workers)
+    if missing > 0:
         cluster.scale(jobs=wanted)
-    return len(ended)
+    return max(missing, 0)
 
 
 @contextlib.contextmanager

@@ -140,6 +140,7 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
     spent = WorkerTime()
     resubmits = {index: RESUBMITS_PER_IMPACT * len(group) for index, group in enumerate(groups)}
     prefix = f"impacts-{study.name}"  # the dashboard groups tasks by it
+    batch_jobs = len(getattr(getattr(client, "cluster", None), "worker_spec", None) or {})
     pending = {
         client.submit(group_task, study, group, pure=False, key=f"{prefix}-{index}"): index
         for index, group in enumerate(groups)
@@ -176,7 +177,7 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
         if time.monotonic() - last >= PROGRESS_EVERY or not pending:
             print(progress.line(), flush=True)
             last = time.monotonic()
-            if pending and (replaced := replace_ended_jobs(client)):
+            if pending and (replaced := replace_ended_jobs(client, batch_jobs)):
                 print(f"  {replaced} batch job(s) ended; as many submitted again", flush=True)
     print(spent.line(), flush=True)
     return {
