@@ -15,6 +15,7 @@ import logging
 import os
 import subprocess
 import sys
+import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -78,6 +79,9 @@ def worker_environment() -> list[str]:
 
 def make_cluster(spec: ClusterSpec):
     """A new Dask cluster for ``spec`` (not for a joined one)."""
+    # Another dashboard on 8787 (a second study): Dask takes a free port, and
+    # the driver prints the address it took; its warning would say it again.
+    warnings.filterwarnings("ignore", message="Port 8787 is already in use", category=UserWarning)
     if spec.kind == "local":
         from distributed import LocalCluster
 
