@@ -146,7 +146,7 @@ paper: setup
 	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
 test: setup setup-pypi $(STAMPS)/debian-test
-	$(PYTHON) -m pytest -q tests
+	$(PYTHON) -m pytest -q -rs tests
 
 # decks/log.<date>.impact.g++.1 and .2: LAMMPS's logs of the default impact
 # on one and two ranks, as LAMMPS's examples ship them (tests/reference_logs.py).

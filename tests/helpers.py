@@ -6,6 +6,9 @@ from __future__ import annotations
 import ctypes
 import json
 import os
+import shutil
+import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
@@ -38,10 +41,6 @@ CRASH_SCENARIO = ["--lattices", "random", "--cot-gamma", "0.167", "1.0", "--samp
 
 def run_crash_scenario(name: str, *extra: str, env: dict | None = None):
     """The scenario as a study named ``name``, from a clean folder."""
-    import shutil
-    import subprocess
-    import sys
-
     shutil.rmtree(RUNS / name, ignore_errors=True)
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name, *CRASH_SCENARIO]
     return subprocess.run(
