@@ -147,7 +147,9 @@ def test_run_study_takes_a_notebooks_client(uninterrupted):
         with Client(cluster) as client:
             counts = run_study(done, client=client)
     assert counts["done"] == 3 and counts["ran"] == 3 and counts["workers"] == 1
-    for result in (RUNS / "test_study_whole" / "random" / "s1").glob("*/result.json"):
+    command_results = sorted((RUNS / "test_study_whole" / "random" / "s1").glob("*/result.json"))
+    assert len(command_results) == 3  # the same three angles, so the comparison is made
+    for result in command_results:
         ours = json.loads((done.folder / "random" / "s1" / result.parent.name / "result.json")
                           .read_text())  # fmt: skip
         theirs = json.loads(result.read_text())
