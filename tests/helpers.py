@@ -61,3 +61,17 @@ def genuine_failures(study: Path) -> dict[str, str]:
     for folder, error in failed.items():
         assert error == lammps_error(Path(folder) / "log.lammps", "no ERROR in its log")
     return failed
+
+
+def stop_by_pid(processes: list[subprocess.Popen], seconds: float = 30) -> None:
+    """Stop daemons a test started, last started first, by their own pids:
+    SIGTERM, then SIGKILL for one still alive after ``seconds``."""
+    for process in reversed(processes):
+        if process.poll() is None:
+            process.terminate()
+    for process in reversed(processes):
+        try:
+            process.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()

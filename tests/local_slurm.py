@@ -21,6 +21,8 @@ import time
 from collections.abc import Iterator
 from pathlib import Path
 
+from tests.helpers import stop_by_pid
+
 DAEMONS = ("munged", "mungekey", "slurmctld", "slurmd", "sinfo", "sbatch", "srun", "scancel")
 PACKAGES = "slurmctld slurmd slurm-client munge"
 
@@ -146,15 +148,7 @@ def one_node_slurm(folder: Path) -> Iterator[dict[str, str]]:
         wait_for("the Slurm node", idle, 60, folder / "slurmd.log")
         yield {"SLURM_CONF": str(conf)}
     finally:
-        for daemon in reversed(daemons):  # slurmd first: it ends its jobs' steps
-            if daemon.poll() is None:
-                daemon.send_signal(signal.SIGTERM)
-        for daemon in reversed(daemons):
-            try:
-                daemon.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                daemon.kill()
-                daemon.wait()
+        stop_by_pid(daemons, 20)  # slurmd first: it ends its jobs' steps
 
 
 if __name__ == "__main__":

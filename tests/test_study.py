@@ -17,7 +17,7 @@ import pytest
 
 from runner.driver import job_groups
 from runner.study import Study
-from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario
+from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario, stop_by_pid
 
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
 COMPARED = (
@@ -186,14 +186,7 @@ def test_a_joined_cluster_that_gives_tasks_up_loses_no_impact(tmp_path):
         assert proc.returncode == 1, proc.stderr
         genuine_failures(RUNS / name)
     finally:
-        for daemon in reversed(daemons):
-            daemon.terminate()
-        for daemon in reversed(daemons):
-            try:
-                daemon.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                daemon.kill()
-                daemon.wait()
+        stop_by_pid(daemons)
 
 
 @pytest.mark.parametrize(
