@@ -172,6 +172,10 @@ void BondHarmonicQuartic::eval(int nfrom, int nto)
       reinterpret_cast<const BondEntry *>(neighbor->bondlist[0]);
   const Param *const __restrict coeffs = param;
   const int nlocal = atom->nlocal;
+  // Steps that want the global energy alone (a thermo or compute pe row, as
+  // the impact deck's series every few steps): ev_tally's sum, in the same
+  // order, without its per-bond bookkeeping of what is not wanted.
+  const bool energy_only = EVFLAG && NEWTON_BOND && eflag_global && !eflag_atom && !vflag_either;
 
   alignas(64) double dx[BLOCK], dy[BLOCK], dz[BLOCK];
   alignas(64) double b_r0[BLOCK], b_ka[BLOCK], b_kb[BLOCK];
@@ -227,8 +231,12 @@ void BondHarmonicQuartic::eval(int nfrom, int nto)
         f[i2].y -= fy[k];
         if (THREE_D) f[i2].z -= fz[k];
       }
-      if (EVFLAG)
-        ev_tally(i1, i2, nlocal, NEWTON_BOND, ebond[k], fbond[k], dx[k], dy[k], dz[k]);
+      if (EVFLAG) {
+        if (energy_only)
+          energy += ebond[k];
+        else
+          ev_tally(i1, i2, nlocal, NEWTON_BOND, ebond[k], fbond[k], dx[k], dy[k], dz[k]);
+      }
     }
     if (NEWTON_BOND || cur < nlocal) {
       f[cur].x += ax;

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import subprocess
@@ -27,8 +28,10 @@ RUN_OUTPUTS = (
 )
 
 
+@functools.lru_cache(maxsize=1)
 def git_revision() -> str:
-    """The project's commit, with '+dirty' if the work tree has changes.
+    """The project's commit, with '+dirty' if the work tree has changes; asked
+    of git once per process (two git commands cost 4 ms, 4 % of an impact).
 
     Returns
     -------
