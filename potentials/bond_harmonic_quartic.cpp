@@ -16,11 +16,11 @@
 
    with r0, ka, kb per bond type. The same energy as bond_style class2 with
    K2 = ka/2, K3 = 0, K4 = kb/4, at about a third of the cost
-   (docs/benchmarks/spring_cost.md). Bonds go in blocks: coordinate
-   differences and coefficients are gathered into short contiguous arrays;
-   the arithmetic, with its square root and division, runs as one loop of
-   fixed length that the compiler turns into SIMD code; then the forces are
-   added to the atoms. z is skipped in 2-D runs.
+   (docs/benchmarks/spring_cost.md). One plain loop over the bond list,
+   with z skipped in 2-D runs: a blocked, vectorised form (gather, SIMD
+   arithmetic, scatter; 43cb672 and before) ran the impact's loop 12 %
+   slower on the AMD EPYC of docs/benchmarks/loop_floor.md, where sqrt and
+   the division no longer dominate a spring.
 ------------------------------------------------------------------------- */
 
 #include "bond_harmonic_quartic.h"
@@ -40,9 +40,6 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-// Flat views of atom->x / atom->f and neighbor->bondlist, which LAMMPS
-// allocates as one contiguous block behind the row pointers; reading them
-// this way saves a dependent pointer load per atom and per bond.
 struct Vec3 {
   double x, y, z;
 };
@@ -51,56 +48,6 @@ struct BondEntry {
 };
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
 static_assert(sizeof(BondEntry) == 3 * sizeof(int), "BondEntry must be three packed ints");
-
-// Bonds per block: the block's scratch arrays (11 kB) stay in L1, and a
-// fixed trip count lets the compiler vectorise the arithmetic without a
-// remainder loop (gcc's -O2 cost model requires that). 128 measured faster
-// than 64 and 256.
-constexpr int BLOCK = 128;
-
-// Several x86-64 builds of the block arithmetic, the best one picked when the
-// library loads: its square roots and divisions, the bulk of a spring's cost,
-// run 2 (SSE2), 4 (AVX2) or 8 (AVX-512) bonds per instruction.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define HARMONIC_QUARTIC_CLONES \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define HARMONIC_QUARTIC_CLONES
-#endif
-
-// One block of BLOCK bonds, from the coordinate differences and the
-// coefficients gathered by the caller: the force on the first atom (fx, fy,
-// fz), the force over distance fbond and, with EVFLAG, the energy. Fixed trip
-// count, no branches, no aliasing: the compiler vectorises it (given
-// -fno-math-errno, so that sqrt needs no errno check).
-template <int EVFLAG, int THREE_D>
-HARMONIC_QUARTIC_CLONES void block_forces(const double *__restrict dx, const double *__restrict dy,
-                                          const double *__restrict dz, const double *__restrict r0,
-                                          const double *__restrict ka, const double *__restrict kb,
-                                          double *__restrict fx, double *__restrict fy,
-                                          double *__restrict fz, double *__restrict fbond,
-                                          double *__restrict ebond)
-{
-  for (int k = 0; k < BLOCK; k++) {
-    double rsq = dx[k] * dx[k] + dy[k] * dy[k];
-    if (THREE_D) rsq += dz[k] * dz[k];
-    const double r = sqrt(rsq);
-    const double dr = r - r0[k];
-    const double dr2 = dr * dr;
-    const double de = ka[k] * dr + kb[k] * (dr2 * dr);
-    // at r = 0 the force vector (fb times a zero difference) is zero
-    // whatever fb is; dividing by 1 there keeps the loop branch-free
-    // (an == test, unlike >, raises no flag on NaN and so may be vectorised)
-    const double fb = -de / (r + (r == 0.0));
-    fx[k] = dx[k] * fb;
-    fy[k] = dy[k] * fb;
-    if (THREE_D) fz[k] = dz[k] * fb;
-    if (EVFLAG) {
-      fbond[k] = fb;
-      ebond[k] = 0.5 * ka[k] * dr2 + 0.25 * kb[k] * (dr2 * dr2);
-    }
-  }
-}
 
 }    // namespace
 
@@ -177,71 +124,36 @@ void BondHarmonicQuartic::eval(int nfrom, int nto)
   // order, without its per-bond bookkeeping of what is not wanted.
   const bool energy_only = EVFLAG && NEWTON_BOND && eflag_global && !eflag_atom && !vflag_either;
 
-  alignas(64) double dx[BLOCK], dy[BLOCK], dz[BLOCK];
-  alignas(64) double b_r0[BLOCK], b_ka[BLOCK], b_kb[BLOCK];
-  alignas(64) double fx[BLOCK], fy[BLOCK], fz[BLOCK], fbond[BLOCK], ebond[BLOCK];
+  for (int n = nfrom; n < nto; n++) {
+    const int i1 = bonds[n].i1;
+    const int i2 = bonds[n].i2;
+    const Param &p = coeffs[bonds[n].type];
+    const double dx = x[i1].x - x[i2].x;
+    const double dy = x[i1].y - x[i2].y;
+    const double dz = THREE_D ? x[i1].z - x[i2].z : 0.0;
+    double rsq = dx * dx + dy * dy;
+    if (THREE_D) rsq += dz * dz;
+    const double r = sqrt(rsq);
+    const double dr = r - p.r0;
+    const double dr2 = dr * dr;
+    const double fbond = r > 0.0 ? -(p.ka * dr + p.kb * (dr2 * dr)) / r : 0.0;
 
-  for (int start = nfrom; start < nto; start += BLOCK) {
-    const int m = (nto - start < BLOCK) ? nto - start : BLOCK;
-    const BondEntry *const block = bonds + start;
-
-    for (int k = 0; k < m; k++) {
-      const Vec3 &a = x[block[k].i1];
-      const Vec3 &b = x[block[k].i2];
-      const Param &p = coeffs[block[k].type];
-      dx[k] = a.x - b.x;
-      dy[k] = a.y - b.y;
-      if (THREE_D) dz[k] = a.z - b.z;
-      b_r0[k] = p.r0;
-      b_ka[k] = p.ka;
-      b_kb[k] = p.kb;
+    if (NEWTON_BOND || i1 < nlocal) {
+      f[i1].x += dx * fbond;
+      f[i1].y += dy * fbond;
+      if (THREE_D) f[i1].z += dz * fbond;
     }
-    // the unused tail of the last block: springs at rest, no force
-    for (int k = m; k < BLOCK; k++) {
-      dx[k] = 1.0;
-      dy[k] = dz[k] = 0.0;
-      b_r0[k] = 1.0;
-      b_ka[k] = b_kb[k] = 0.0;
+    if (NEWTON_BOND || i2 < nlocal) {
+      f[i2].x -= dx * fbond;
+      f[i2].y -= dy * fbond;
+      if (THREE_D) f[i2].z -= dz * fbond;
     }
-
-    block_forces<EVFLAG, THREE_D>(dx, dy, dz, b_r0, b_ka, b_kb, fx, fy, fz, fbond, ebond);
-
-    // LAMMPS lists an atom's bonds one after the other (first atom i1), so
-    // the force on i1 is summed in registers over such a run: adding to
-    // f[i1] bond by bond would chain each update to the store before it.
-    int cur = block[0].i1;
-    double ax = 0.0, ay = 0.0, az = 0.0;
-    for (int k = 0; k < m; k++) {
-      const int i1 = block[k].i1;
-      const int i2 = block[k].i2;
-      if (i1 != cur) {
-        if (NEWTON_BOND || cur < nlocal) {
-          f[cur].x += ax;
-          f[cur].y += ay;
-          if (THREE_D) f[cur].z += az;
-        }
-        cur = i1;
-        ax = ay = az = 0.0;
-      }
-      ax += fx[k];
-      ay += fy[k];
-      if (THREE_D) az += fz[k];
-      if (NEWTON_BOND || i2 < nlocal) {
-        f[i2].x -= fx[k];
-        f[i2].y -= fy[k];
-        if (THREE_D) f[i2].z -= fz[k];
-      }
-      if (EVFLAG) {
-        if (energy_only)
-          energy += ebond[k];
-        else
-          ev_tally(i1, i2, nlocal, NEWTON_BOND, ebond[k], fbond[k], dx[k], dy[k], dz[k]);
-      }
-    }
-    if (NEWTON_BOND || cur < nlocal) {
-      f[cur].x += ax;
-      f[cur].y += ay;
-      if (THREE_D) f[cur].z += az;
+    if (EVFLAG) {
+      const double ebond = 0.5 * p.ka * dr2 + 0.25 * p.kb * (dr2 * dr2);
+      if (energy_only)
+        energy += ebond;
+      else
+        ev_tally(i1, i2, nlocal, NEWTON_BOND, ebond, fbond, dx, dy, dz);
     }
   }
 }
