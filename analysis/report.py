@@ -228,6 +228,24 @@ def tables_where(tables: str, preset: str) -> str:
     )
 
 
+# The pages that compare a preset's committed tables with an earlier run of
+# the same seeds (bench/paper_ensemble.py), by preset.
+EARLIER_RUNS = {"paper": "benchmarks/paper_ensemble.md"}
+
+
+def earlier_runs_section(preset: str) -> list[str]:
+    """Where the page's e and beta are compared with an earlier run of its seeds."""
+    if preset not in EARLIER_RUNS:
+        return []
+    return [
+        "Against the run before, seed by seed and in distribution (each impact's e and "
+        "beta move by round-off where the code sums its forces in another order, and "
+        "the contact's chaos grows some of those): "
+        f"[{EARLIER_RUNS[preset]}]({EARLIER_RUNS[preset]}).",
+        "",
+    ]
+
+
 def results_page(
     study: dict,
     rows: list[dict],
@@ -268,6 +286,7 @@ def results_page(
         "with their errors), `failed.csv`. "
         f"Made by `{made_by(study, preset)}`.",
         "",
+        *earlier_runs_section(preset),
         *statistics_section(fits),
         *claims_section(fits),
         *fits_section(fits),

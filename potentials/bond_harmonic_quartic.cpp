@@ -17,10 +17,10 @@
    with r0, ka, kb per bond type. The same energy as bond_style class2 with
    K2 = ka/2, K3 = 0, K4 = kb/4, at about a third of the cost
    (docs/benchmarks/spring_cost.md). One plain loop over the bond list,
-   with z skipped in 2-D runs: a blocked, vectorised form (gather, SIMD
-   arithmetic, scatter; 43cb672 and before) ran the impact's loop 12 %
-   slower on the AMD EPYC of docs/benchmarks/loop_floor.md, where sqrt and
-   the division no longer dominate a spring.
+   with z skipped in 2-D runs. A blocked, vectorised form (gather, SIMD
+   arithmetic, scatter; 43cb672 and before, made on an AMD EPYC) ran the
+   impact's loop 12 % slower on the Intel Xeon of
+   docs/benchmarks/loop_floor.md (2026-11-25).
 ------------------------------------------------------------------------- */
 
 #include "bond_harmonic_quartic.h"

@@ -82,7 +82,10 @@ class EntryPoint:
 
 
 # What a benchmark needs besides the option under test.
-BENCH_BASE = {"drift_tail": ["--impacts", str(ROOT / "docs" / "results" / "impacts.csv")]}
+BENCH_BASE = {
+    "drift_tail": ["--impacts", str(ROOT / "docs" / "results" / "impacts.csv")],
+    "paper_ensemble": ["--before", "HEAD"],
+}
 
 
 def bench_entry_points() -> list[EntryPoint]:
