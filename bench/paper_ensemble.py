@@ -12,29 +12,48 @@ the same table at the git revision --before (analysis/ensemble.py).
 
 from __future__ import annotations
 
+import argparse
 import csv
 import io
+import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 from common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
 
 from analysis.ensemble import impact_differences, paired_differences, summary
+from builder.checks import InPath
 from builder.errors import InputError
 
 TABLE = "docs/results/impacts.csv"
 WITHIN = 2.0  # standard errors
 
 
+def git_revision(text: str) -> str:
+    """argparse's type for a revision of this clone that holds the table."""
+    try:
+        file_at(text, TABLE)
+    except subprocess.CalledProcessError:
+        raise argparse.ArgumentTypeError(
+            f"must be a git revision of this clone with {TABLE}, got {text!r}"
+        ) from None
+    return text
+
+
+git_revision.bad_values = ("no-such-revision", "HEAD~100000")
+
+
 def parser():
     parser = bench_parser(__file__, __doc__)
     parser.add_argument(
-        "--before", required=True, help=f"the git revision whose {TABLE} to compare against"
+        "--before",
+        type=git_revision,
+        required=True,
+        help=f"the git revision whose {TABLE} to compare against",
     )
     parser.add_argument(
         "--after",
-        type=Path,
+        type=InPath("file"),
         default=ROOT / TABLE,
         help=f"the table of the run to check (default: {TABLE})",
     )
@@ -43,13 +62,8 @@ def parser():
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
+    before = list(csv.DictReader(io.StringIO(file_at(args.before, TABLE))))
     try:
-        try:
-            before = list(csv.DictReader(io.StringIO(file_at(args.before, TABLE))))
-        except Exception:
-            raise InputError(f"--before: no {TABLE} at git revision {args.before!r}") from None
-        if not args.after.is_file():
-            raise InputError(f"--after: no such table {args.after}")
         with args.after.open() as handle:
             after = list(csv.DictReader(handle))
         differences = paired_differences(before, after)

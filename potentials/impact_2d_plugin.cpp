@@ -1,11 +1,12 @@
 /* ----------------------------------------------------------------------
-   The impact deck's 2-D styles, compute motion/2d and fix nve/2d, as a
-   LAMMPS plugin, for builds with the PLUGIN package: "plugin load
-   impact_2d_plugin.so". See potentials/README.md.
+   The impact deck's compute motion/2d as a LAMMPS plugin, for builds with
+   the PLUGIN package: "plugin load impact_2d_plugin.so". Fix nve/2d
+   derives from fix nve, whose header such builds may not ship (the PyPI
+   wheel does not); the deck then uses fix nve, which gives the same bits
+   (decks/impact_2d.lmp). See potentials/README.md.
 ------------------------------------------------------------------------- */
 
 #include "compute_motion_2d.h"
-#include "fix_nve_2d.h"
 #include "lammpsplugin.h"
 
 // The wheel's headers carry no version.h; the build passes the version instead.
@@ -20,11 +21,6 @@ static Compute *motion_2d_creator(LAMMPS *lmp, int narg, char **arg)
   return new ComputeMotion2d(lmp, narg, arg);
 }
 
-static Fix *nve_2d_creator(LAMMPS *lmp, int narg, char **arg)
-{
-  return new FixNVE2d(lmp, narg, arg);
-}
-
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   lammpsplugin_t plugin;
@@ -37,11 +33,5 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.author = "oblique-impact workflow";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &motion_2d_creator;
   plugin.handle = handle;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "nve/2d";
-  plugin.info = "Velocity Verlet of fix nve in 2-D (oblique-impact workflow)";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &nve_2d_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -236,16 +236,43 @@ def parser() -> OneLineParser:
     return parser
 
 
+def study_argument(text: str) -> str:
+    """A study file's name (studies/<name>.toml) or path: its study becomes
+    one of runner.study.PRESETS under the file's name."""
+    from .study import DOC_PAGES, PRESETS
+    from .study_file import STUDIES, read_study_file, study_path
+
+    try:
+        path = study_path(text)
+        study, page = read_study_file(path)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    own = STUDIES / f"{path.stem}.toml"
+    if path.stem in PRESETS and path.resolve() != own.resolve():
+        raise argparse.ArgumentTypeError(
+            f"{path}: {own} has the name {path.stem!r} already; rename the file"
+        )
+    PRESETS[path.stem] = study
+    if page:
+        DOC_PAGES[path.stem] = page
+    return path.stem
+
+
+study_argument.bad_values = ("no-such-study", "{tmp}/missing.toml")
+
+
 def add_study_arguments(study) -> None:
     """runner study's options; None means 'the study's own' (its study.json, or the preset)."""
     from .study import PRESETS
 
     study.add_argument(
         "preset",
-        choices=tuple(PRESETS),
-        help="paper: the study of docs/model.md section 7 in full; demo: the random lattice, "
-        "4 samples; speed: e and beta against v_n (docs/speed.md); grazing: e up to 86 "
-        "degrees (docs/grazing.md)",
+        metavar="STUDY",
+        type=study_argument,
+        help=f"a study file (studies/*.toml, or a path to one), or its name: "
+        f"{', '.join(PRESETS)}; paper: the study of docs/model.md section 7 in full; demo: "
+        "the random lattice, 4 samples; speed: e and beta against v_n (docs/speed.md); "
+        "grazing: e up to 86 degrees (docs/grazing.md)",
     )
     grid = study.add_argument_group(
         "the grid (default: the study's study.json if it exists, else the preset's)"
@@ -609,8 +636,8 @@ def run_study_command(args) -> int:
     doc_name = DOC_PAGES.get(args.preset) if args.name in (None, args.preset) else args.name
     if args.docs and args.preset not in DOC_PAGES:
         raise InputError(
-            f"--docs: the {args.preset} preset has no page in docs/; "
-            f"presets with one: {', '.join(DOC_PAGES)}"
+            f"--docs: the {args.preset} study has no page in docs/ (its file's page); "
+            f"studies with one: {', '.join(DOC_PAGES)}"
         )
     # another preset's page, or docs/' own folders, are not a study's to write
     taken = {*DOC_PAGES.values(), "figures", "benchmarks"} - {DOC_PAGES.get(args.preset)}

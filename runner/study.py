@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import atexit
 import json
-import math
 import os
 import shutil
 import sys
@@ -56,8 +55,6 @@ ANGLES = Range(2, 1_000, integer=True)
 COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
 MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 505.0
-# Presets whose page is committed under docs/, written only with --docs.
-DOC_PAGES = {"paper": "results", "speed": "speed", "grazing": "grazing"}
 # What may differ between a study's study.json and a command that resumes it
 # with --extend: more samples, more lattices.
 EXTENDABLE = ("samples", "lattices")
@@ -490,38 +487,22 @@ def cpu_name() -> str:
     return "unknown CPU"
 
 
-# The speed preset: v_n from 0.01 to 0.3 c, log-spaced, at near-normal
-# incidence, an angle where the default disk sticks (beta near its plateau)
-# and one where it slides (docs/speed.md).
-SPEED_PRESET = tuple(float(f"{v:.3g}") for v in np.geomspace(0.01, 0.3, 7))
-SPEED_COT_GAMMA = (10.0, 3.0, 0.5)
-# The grazing preset: angles from 30 to 86 degrees, closest where e turns, on
-# the default scene at v_n = 0.01 c, where e passes 1 at 63 degrees
-# (docs/speed.md) and the disk slides little enough to stay clear of the 8 R
-# wall's held sides up to 86 degrees. Widening the wall instead lengthens the
-# clamped beam that the default's wall is, which lowers e (docs/grazing.md).
-GRAZING_DEGREES = (30, 45, 55, 60, 65, 68, 71, 74, 76, 78, 80, 82, 84, 86)
-GRAZING_VN = 0.01
+def load_presets() -> tuple[dict[str, Study], dict[str, str]]:
+    """The study files in studies/ (runner/study_file.py): each study by its
+    name, and the page in docs/ of those that have one."""
+    from .study_file import STUDIES, read_study_file
 
-PRESETS = {
-    "paper": Study("paper"),
-    "demo": Study("demo", lattices=("random",), angles=16, samples=4),
-    "speed": Study(
-        "speed",
-        cot_gamma=SPEED_COT_GAMMA,
-        angles=len(SPEED_COT_GAMMA),
-        samples=20,
-        speeds=SPEED_PRESET,
-    ),
-    "grazing": Study(
-        "grazing",
-        lattices=("random",),
-        cot_gamma=tuple(round(1.0 / math.tan(math.radians(g)), 6) for g in GRAZING_DEGREES),
-        angles=len(GRAZING_DEGREES),
-        samples=30,
-        vn=GRAZING_VN,
-    ),
-}
+    presets, pages = {}, {}
+    for path in sorted(STUDIES.glob("*.toml")):
+        presets[path.stem], page = read_study_file(path)
+        if page:
+            pages[path.stem] = page
+    return presets, pages
+
+
+# The studies of studies/*.toml (paper, demo, speed, grazing, ...), and the
+# pages under docs/ of those that have one, written only with --docs.
+PRESETS, DOC_PAGES = load_presets()
 
 
 def state(job: dict) -> str:

@@ -1,0 +1,160 @@
+"""Study files: a study's grid, scene and run in studies/<name>.toml.
+
+    # studies/paper.toml
+    page = "results"                 # its page in docs/ (with --docs), if any
+    [grid]
+    lattices = ["random", "triangular", "square_nu0.1", "square_nu0.3"]
+    angles = 16                      # or cot_gamma = [...] or gamma_deg = [...]
+    samples = 100
+    vn = 0.1                         # or speeds = [...]: a folder per speed
+    [scene]                          # builder.scene's readings, n_disk, ...
+    [run]                            # runner.options.RunOptions: dt, ...
+
+Every key is a field of ``runner.study.Study`` (grid and scene) or of
+``RunOptions`` (run); what a file leaves out takes the default. The study's
+name is the file's. The command line's options override the file's, and
+study.json records what ran.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import fields, replace
+from pathlib import Path
+
+from builder.errors import InputError
+
+from .options import RunOptions
+
+STUDIES = Path(__file__).resolve().parents[1] / "studies"
+GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
+SECTIONS = ("grid", "scene", "run")
+# Fields that take a list: the study's own axes.
+LISTS = ("lattices", "cot_gamma", "gamma_deg", "speeds")
+
+
+def study_path(name_or_path: str) -> Path:
+    """studies/<name>.toml for a bare name, else the path given.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If there is no such file (naming the studies there are).
+    """
+    path = Path(name_or_path)
+    if path.suffix != ".toml" and len(path.parts) == 1:
+        path = STUDIES / f"{name_or_path}.toml"
+    if not path.is_file():
+        known = ", ".join(sorted(p.stem for p in STUDIES.glob("*.toml")))
+        raise InputError(
+            f"study must be a study file or one of {known} (studies/), got {name_or_path!r}"
+        )
+    return path
+
+
+def cot_of_degrees(degrees: float) -> float:
+    """cot gamma of an angle in degrees, to 6 decimals (what a study's folder names keep)."""
+    return round(1.0 / math.tan(math.radians(degrees)), 6)
+
+
+def read_study_file(path: Path):
+    """The study a file describes, and its page's name in docs/ ('' for none).
+
+    Returns
+    -------
+    (runner.study.Study, str)
+
+    Raises
+    ------
+    builder.errors.InputError
+        One line naming the file and the key, for a key that is not an
+        option, a value of the wrong kind, or a file that is not TOML.
+    """
+    from .study import Study
+
+    try:
+        data = tomllib.loads(path.read_text())
+    except (OSError, tomllib.TOMLDecodeError) as error:
+        raise InputError(f"{path}: not a study file ({error})") from None
+    page = data.pop("page", "")
+    if not isinstance(page, str):
+        raise InputError(f"{path}: page must be a name in docs/, got {page!r}")
+    unknown = set(data) - set(SECTIONS)
+    if unknown:
+        raise InputError(
+            f"{path}: {sorted(unknown)[0]!r} is not a section; sections: {', '.join(SECTIONS)} "
+            "(and page)"
+        )
+    study_fields = {f.name for f in fields(Study)} - {"name", "options"}
+    allowed = {
+        "grid": set(GRID),
+        "scene": study_fields - set(GRID),
+        "run": {f.name for f in fields(RunOptions)},
+    }
+    values: dict = {}
+    for section in SECTIONS:
+        table = data.get(section, {})
+        if not isinstance(table, dict):
+            raise InputError(f"{path}: [{section}] must be a table of options")
+        for key, value in table.items():
+            if key not in allowed[section]:
+                raise InputError(
+                    f"{path}: [{section}] has no option {key!r}; options: "
+                    f"{', '.join(sorted(allowed[section]))}"
+                )
+            if isinstance(value, list) != (key in LISTS):
+                kind = "a list" if key in LISTS else "one value"
+                raise InputError(f"{path}: [{section}] {key} must be {kind}, got {value!r}")
+            values[(section, key)] = value
+    grid = {k: v for (s, k), v in values.items() if s != "run"}
+    if "gamma_deg" in grid:
+        if "cot_gamma" in grid:
+            raise InputError(f"{path}: [grid] gives both gamma_deg and cot_gamma; give one")
+        grid["cot_gamma"] = [cot_of_degrees(g) for g in grid.pop("gamma_deg")]
+    for key in LISTS:
+        if key in grid:
+            grid[key] = tuple(grid[key])
+    if "cot_gamma" in grid:
+        grid.setdefault("angles", len(grid["cot_gamma"]))
+    run = {k: v for (s, k), v in values.items() if s == "run"}
+    try:
+        study = Study(name=path.stem, **grid, options=replace(RunOptions(route="python"), **run))
+    except TypeError as error:
+        raise InputError(f"{path}: {error}") from None
+    return study, page
+
+
+def study_file_text(study, page: str = "") -> str:
+    """A study file that reads back as ``study`` (its options that differ
+    from the defaults)."""
+    from .study import Study
+
+    default, run_default = Study(study.name), RunOptions(route="python")
+    lines = [f"page = {page!r}".replace("'", '"')] if page else []
+    sections = {"grid": [], "scene": [], "run": []}
+    for field in fields(Study):
+        if field.name in ("name", "options"):
+            continue
+        value = getattr(study, field.name)
+        if value != getattr(default, field.name):
+            section = "grid" if field.name in GRID else "scene"
+            sections[section].append(f"{field.name} = {toml_value(value)}")
+    for field in fields(RunOptions):
+        value = getattr(study.options, field.name)
+        if value != getattr(run_default, field.name):
+            sections["run"].append(f"{field.name} = {toml_value(value)}")
+    for section, body in sections.items():
+        if body:
+            lines += ["", f"[{section}]", *body]
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def toml_value(value) -> str:
+    if isinstance(value, (tuple, list)):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    if isinstance(value, str):
+        return '"' + value + '"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value)

@@ -1,0 +1,114 @@
+"""Study files (studies/*.toml, runner/study_file.py): what they read as, round
+trips, and one-line refusals of bad files."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from dataclasses import replace
+
+import pytest
+
+from builder.errors import InputError
+from runner.options import RunOptions
+from runner.study import DOC_PAGES, PRESETS, Study
+from runner.study_file import STUDIES, read_study_file, study_file_text, study_path
+from tests.helpers import ROOT
+
+
+@pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
+def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
+    """A file written from a study reads back as that study, exactly."""
+    study, page = read_study_file(path)
+    again = tmp_path / path.name
+    again.write_text(study_file_text(study, page))
+    assert read_study_file(again) == (study, page)
+
+
+def test_the_papers_grid():
+    """MODEL.md section 7: four lattices, 16 angles, 100 samples at 0.1 c."""
+    paper = PRESETS["paper"]
+    assert len(paper.jobs()) == 4 * 16 * 100 and paper.vn == 0.1
+    assert DOC_PAGES["paper"] == "results" and "demo" not in DOC_PAGES
+
+
+def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
+    path = tmp_path / "g.toml"
+    path.write_text("[grid]\ngamma_deg = [45, 60]\n")
+    study, _ = read_study_file(path)
+    assert study.cot_gamma == (1.0, 0.57735) and study.angles == 2
+    assert study.gammas() == [45.0, 60.0]
+
+
+def test_a_file_sets_scene_and_run_options(tmp_path):
+    path = tmp_path / "walls.toml"
+    path.write_text('[scene]\nwall_ka = 1.0\nn_wall = "density"\n[run]\ndt = 0.004\n')
+    study, page = read_study_file(path)
+    assert study == Study(
+        "walls", wall_ka=1.0, n_wall="density", options=RunOptions(route="python", dt=0.004)
+    )
+    assert page == ""
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("[grid]\nfoo = 1\n", "[grid] has no option 'foo'"),
+        ("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
+        ("[walls]\n", "'walls' is not a section"),
+        ("[grid]\nsamples = [1, 2]\n", "[grid] samples must be one value"),
+        ('[grid]\nlattices = "random"\n', "[grid] lattices must be a list"),
+        ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
+        ("[grid\n", "not a study file"),
+        ("page = 3\n", "page must be a name"),
+    ],
+)
+def test_a_bad_file_is_refused_naming_it(tmp_path, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match="bad.toml: .*" + message.replace("[", r"\[")):
+        read_study_file(path)
+
+
+def test_a_name_is_a_file_in_studies():
+    assert study_path("paper") == STUDIES / "paper.toml"
+    with pytest.raises(InputError, match="one of demo, grazing, paper, speed"):
+        study_path("no_such_study")
+
+
+def run_study_command(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "runner", "study", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+
+
+def test_the_command_takes_a_file_and_refuses_a_bad_one_in_one_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[grid]\nangles = 1.5\n")
+    proc = run_study_command(str(bad))
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+    clash = tmp_path / "paper.toml"
+    clash.write_text("[grid]\nsamples = 2\n")
+    proc = run_study_command(str(clash), "--report-only")
+    assert proc.returncode == 2 and "has the name 'paper' already" in proc.stderr
+
+
+def test_command_line_options_override_the_file(tmp_path, monkeypatch):
+    from runner.__main__ import parser
+    from runner.study import study_from_args
+
+    # the command registers the file's study among the presets: this test's only
+    monkeypatch.setattr("runner.study.PRESETS", dict(PRESETS))
+    monkeypatch.setattr("runner.study.DOC_PAGES", dict(DOC_PAGES))
+
+    mine = tmp_path / "mine.toml"
+    mine.write_text(
+        '[grid]\nlattices = ["random"]\nsamples = 5\nangles = 4\n[scene]\nwall_ka = 1.0\n'
+    )
+    args = parser().parse_args(["study", str(mine), "--samples", "2", "--name", "mine_probe"])
+    study = study_from_args(args)
+    assert (study.samples, study.angles, study.wall_ka) == (2, 4, 1.0)
+    assert replace(study, name="mine", samples=5) == read_study_file(mine)[0]
