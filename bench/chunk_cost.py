@@ -28,7 +28,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     ROOT,
     add_repeats,
     add_scene_pick,
@@ -40,8 +40,7 @@ from common import (
     refuse,
     write_report,
 )
-from loop_overhead import commit_name, respa_split, run_deck
-
+from bench.loop_overhead import commit_name, respa_split, run_deck
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene

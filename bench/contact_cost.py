@@ -20,7 +20,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     BENCH_DECK,
     ROOT,
     SEED_COUNT,
@@ -32,7 +32,6 @@ from common import (
     timer_seconds,
     write_report,
 )
-
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene

@@ -27,8 +27,8 @@ from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
-from common import bench_parser, markdown_table, output_folder, write_report
 
+from bench.common import bench_parser, markdown_table, output_folder, write_report
 from builder.checks import OutFolder
 from builder.lammps_data import write_scene
 from builder.scene import build_scene

@@ -24,9 +24,9 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import bench_parser, distinct, markdown_table, refuse, write_report
 
 from analysis.result import MAX_DRIFT
+from bench.common import bench_parser, distinct, markdown_table, refuse, write_report
 from builder.checks import InPath, Range
 from builder.errors import InputError
 from builder.lammps_data import write_scene

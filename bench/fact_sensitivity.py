@@ -24,8 +24,11 @@ import argparse
 import sys
 from pathlib import Path
 
-import model_readings as readings
-from common import (
+import bench.model_readings as readings
+from analysis.claims import claims
+from analysis.estimates import study_estimates
+from analysis.table import write_csv
+from bench.common import (
     DOCS,
     bench_parser,
     markdown_table,
@@ -35,10 +38,6 @@ from common import (
     study_rows,
     write_report,
 )
-
-from analysis.claims import claims
-from analysis.estimates import study_estimates
-from analysis.table import write_csv
 from builder.errors import InputError
 from runner.clusters import WORKERS
 from runner.driver import run_study

@@ -15,7 +15,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     add_repeats,
     bench_parser,
     loop_seconds,
@@ -23,7 +23,6 @@ from common import (
     median,
     write_report,
 )
-
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene

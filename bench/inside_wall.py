@@ -25,10 +25,10 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import bench_parser, refuse
 from matplotlib.path import Path as Polygon
 
 from analysis.dump import open_run
+from bench.common import bench_parser, refuse
 from builder.checks import Range
 from builder.cli import wall_points, wall_spring
 from builder.errors import InputError

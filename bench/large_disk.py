@@ -34,9 +34,16 @@ import math
 import shutil
 import sys
 
-from common import RUNS, bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
-
 from analysis.series import read_energies
+from bench.common import (
+    RUNS,
+    bench_parser,
+    distinct,
+    loop_seconds,
+    markdown_table,
+    refuse,
+    write_report,
+)
 from builder.checks import Range
 from builder.errors import InputError
 from builder.lammps_data import write_scene

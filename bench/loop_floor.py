@@ -28,7 +28,8 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from common import (
+
+from bench.common import (
     BENCH_DECK,
     ROOT,
     RUNS,
@@ -40,7 +41,6 @@ from common import (
     median,
     write_report,
 )
-
 from builder.checks import Range
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene

@@ -35,7 +35,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from common import (
+from bench.common import (
     BENCH_DECK,
     ROOT,
     add_repeats,
@@ -48,7 +48,6 @@ from common import (
     timer_seconds,
     write_report,
 )
-
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene

@@ -39,7 +39,11 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from common import (
+from analysis.claims import claims
+from analysis.estimates import study_estimates
+from analysis.seeds import QUANTITIES
+from analysis.table import write_csv
+from bench.common import (
     DOCS,
     bench_parser,
     markdown_table,
@@ -49,11 +53,6 @@ from common import (
     study_rows,
     write_report,
 )
-
-from analysis.claims import claims
-from analysis.estimates import study_estimates
-from analysis.seeds import QUANTITIES
-from analysis.table import write_csv
 from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING, SceneSpec

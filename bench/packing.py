@@ -23,7 +23,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     BENCH_DECK,
     ROOT,
     TIMED_STEPS,
@@ -34,7 +34,6 @@ from common import (
     timer_seconds,
     write_report,
 )
-
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.lammps_run import command_line, mpi_environment, mpi_launcher

@@ -19,9 +19,9 @@ import subprocess
 import sys
 
 import numpy as np
-from common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
 
 from analysis.ensemble import impact_differences, paired_differences, summary
+from bench.common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
 from builder.checks import InPath
 from builder.errors import InputError
 

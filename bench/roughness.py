@@ -29,8 +29,8 @@ import sys
 import time
 
 import numpy as np
-from common import SEED_COUNT, bench_parser, markdown_table, refuse, write_report
 
+from bench.common import SEED_COUNT, bench_parser, markdown_table, refuse, write_report
 from builder import bodies
 from builder.errors import BuildError, InputError
 from builder.scene import SEED, _sample_seeds

@@ -16,7 +16,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     add_repeats,
     bench_parser,
     loop_seconds,
@@ -24,7 +24,6 @@ from common import (
     median,
     write_report,
 )
-
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene

@@ -33,7 +33,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from common import (
+
+from analysis.fits import Means, fit_walton, reduced_chi2
+from analysis.table import NEAR_SIDE, mean_rows, write_csv
+from analysis.theory import walton_beta
+from bench.common import (
     DOCS,
     bench_parser,
     markdown_table,
@@ -43,10 +47,6 @@ from common import (
     study_rows,
     write_report,
 )
-
-from analysis.fits import Means, fit_walton, reduced_chi2
-from analysis.table import NEAR_SIDE, mean_rows, write_csv
-from analysis.theory import walton_beta
 from builder.checks import Range
 from builder.errors import InputError
 from builder.scene import FIRST_READING

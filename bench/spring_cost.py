@@ -24,7 +24,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import (
+from bench.common import (
     BENCH_DECK,
     DOCS,
     ROOT,
@@ -38,7 +38,6 @@ from common import (
     refuse,
     timer_seconds,
 )
-
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene

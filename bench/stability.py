@@ -22,9 +22,9 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from common import bench_parser, markdown_table, write_report
 
 from analysis.series import read_energies
+from bench.common import bench_parser, markdown_table, write_report
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
 from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec, build_scene

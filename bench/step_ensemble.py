@@ -21,8 +21,8 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import bench_parser, markdown_table, write_report
 
+from bench.common import bench_parser, markdown_table, write_report
 from builder.errors import InputError
 from runner.clusters import WORKERS
 from runner.driver import run_study

@@ -21,9 +21,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from common import SEED_COUNT, bench_parser, markdown_table, median, write_report
-
 from analysis.series import read_series
+from bench.common import SEED_COUNT, bench_parser, markdown_table, median, write_report
 from builder.checks import Range
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson

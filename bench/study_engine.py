@@ -31,8 +31,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
-
+from bench.common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
 from builder.checks import Range
 from runner.clusters import ClusterSpec, dask_client
 from runner.driver import job_groups

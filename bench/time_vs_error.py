@@ -29,7 +29,8 @@ from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
-from common import (
+
+from bench.common import (
     bench_parser,
     loop_seconds,
     markdown_table,
@@ -38,7 +39,6 @@ from common import (
     refuse,
     write_report,
 )
-
 from builder.checks import OutFolder
 from builder.errors import InputError
 from builder.lammps_data import write_scene

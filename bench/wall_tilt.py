@@ -25,10 +25,10 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from common import ROOT, bench_parser, markdown_table, page_folder, refuse, write_report
 
 from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
+from bench.common import ROOT, bench_parser, markdown_table, page_folder, refuse, write_report
 from builder.checks import InPath, Range
 from builder.errors import InputError
 from builder.scene import ANGLE

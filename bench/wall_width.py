@@ -23,8 +23,8 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
-from common import SEED_COUNT, bench_parser, distinct, markdown_table, refuse, write_report
 
+from bench.common import SEED_COUNT, bench_parser, distinct, markdown_table, refuse, write_report
 from builder.errors import BuildError, InputError
 from builder.scene import ANGLE, WALL_WIDTH, SceneSpec
 from runner.clusters import WORKERS

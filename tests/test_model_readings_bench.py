@@ -8,8 +8,7 @@ from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-import model_readings as bench  # noqa: E402
+import bench.model_readings as bench
 
 
 def rows_of(reading, lattice, seeds, angles=(5.7, 45.0)):
