@@ -5,7 +5,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import re
 from collections import Counter
 from pathlib import Path
 
@@ -17,117 +16,15 @@ from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
 from .result import FINITE, MAX_DRIFT
+from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
+    drift_section,
+    failure_cause,
+    failure_causes,
+    failure_section,
+    tables_where,
+    wall_end_section,
+)
 from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, with_model_readings, write_csv
-
-NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
-
-
-def failure_cause(message: str) -> str:
-    """A failure's message without LAMMPS's prefix, when and where it struck
-    and its numbers: what failures are counted by."""
-    text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", message.strip())
-    text = re.split(r",| at time | at step ", text, maxsplit=1)[0]
-    return NUMBER.sub("#", text).strip()
-
-
-def failure_causes(failed: list[dict]) -> dict[str, int]:
-    """How many failures each cause has, most first."""
-    return dict(Counter(failure_cause(f["error"]) for f in failed).most_common())
-
-
-def where(impacts: list[dict]) -> str:
-    """Lattices and angles of some impacts, with their seeds (or their count)."""
-    by_angle: dict[tuple, list] = {}
-    for impact in impacts:
-        by_angle.setdefault((impact["lattice"], float(impact["gamma"])), []).append(impact["seed"])
-    parts = []
-    for (lattice, gamma), seeds in sorted(by_angle.items()):
-        seeds = sorted(seeds)
-        listed = (
-            f"seed{'s' if len(seeds) > 1 else ''} {', '.join(map(str, seeds))}"
-            if len(seeds) <= 6
-            else f"{len(seeds)} seeds"
-        )
-        parts.append(f"{lattice} {gamma:g} deg: {listed}")
-    return "; ".join(parts)
-
-
-def failure_section(failed: list[dict]) -> list[str]:
-    """The failed impacts by cause: count, where, and one message in full."""
-    if not failed:
-        return []
-    lines = [
-        "## Failed impacts",
-        "",
-        f"{len(failed)} impact{'' if len(failed) == 1 else 's'} failed, "
-        "by cause (`failed.json` in each impact's folder has its message; `--retry-failed` "
-        "runs them again):",
-        "",
-        "| cause | impacts | where | a message |",
-        "|---|---|---|---|",
-    ]
-    for cause, count in failure_causes(failed).items():
-        these = [f for f in failed if failure_cause(f["error"]) == cause]
-        lines.append(
-            f"| {cause} | {count} | {where(these)} | {these[0]['error'][:160].replace('|', '/')} |"
-        )
-    return lines + [""]
-
-
-def drift_section(rows: list[dict]) -> list[str]:
-    """Impacts whose energy drift exceeded the threshold: their time step was too large."""
-    flagged = [r for r in rows if str(r["drift_exceeded"]) == "True"]
-    if not flagged:
-        return []
-    worst = max(flagged, key=lambda r: abs(float(r["energy_drift"])))
-    impacts = [
-        {"lattice": r["study_lattice"], "gamma": r["gamma_deg"], "seed": r["seed"]} for r in flagged
-    ]
-    return [
-        "## Inaccurate impacts",
-        "",
-        f"{len(flagged)} of the {len(rows)} impacts have an energy drift (change of the total "
-        "energy over the initial kinetic energy) above the study's threshold (`--max-drift`, "
-        "column `drift_exceeded` of impacts.csv); the largest is "
-        f"{float(worst['energy_drift']):.3g} "
-        f"at dt = {worst['dt']} R/c. Their time step is too large for them, and they are in the "
-        f"tables and fits above. Where: {where(impacts)}.",
-        "",
-    ]
-
-
-def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
-    """How many contacts felt the wall's ends."""
-    near = [m for m in means if m["near_side"]]
-    if not near:
-        return []
-    lines = [
-        "## The wall's ends",
-        "",
-        f"This study's wall is {wall_width:g} R wide (docs/model.md's is 8 R), and the contact "
-        "must not reach its fixed sides. At grazing angles the disk slides, and after the "
-        "main contact skims the rough wall, over a long way. Contacts whose disk centre "
-        "came within 1 R of a fixed side:",
-        "",
-        "| lattice | gamma | contacts near a side | impacts |",
-        "|---|---|---|---|",
-    ]
-    lines += [
-        f"| {m['study_lattice']} | {m['gamma_deg']:g} | {m['near_side']} | {m['samples']} |"
-        for m in near
-    ]
-    lines += [
-        "",
-        "On a 16 R wall of the reading before today's default (the disk's density, sides "
-        "and bottom held) 1 of 12 contacts came near a side at 80.5 "
-        "degrees, and the mean e moved by 0.026 to 0.034 at 63.5 to 80.5 degrees (0.9 to "
-        "1.6 standard errors), beta by at most 0.011 (random lattice, 12 samples: "
-        "`python bench/wall_width.py`, docs/benchmarks/wall_width.md, docs/model.md). "
-        "The fits over the angles where at most 10 % of the contacts came near a side are "
-        "among the fitting choices above (`angles` clear).",
-        "",
-    ]
-    return lines
 
 
 def angle_span(rows: list[dict]) -> str:
@@ -216,16 +113,6 @@ WORKER_PHASE_NAMES = {
     "lammps": "LAMMPS",
     "rest": "analysis and files",
 }
-
-
-def tables_where(tables: str, preset: str) -> str:
-    """Where a page's tables are and the command that remakes it from them."""
-    if not tables:
-        return ""
-    return (
-        f" (in `{tables}`, from which `python -m runner study {preset} --from-tables {tables}` "
-        "makes this page again without the runs)"
-    )
 
 
 # The pages that compare a preset's committed tables with an earlier run of

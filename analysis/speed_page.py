@@ -7,8 +7,11 @@ from pathlib import Path
 
 import numpy as np
 
+from builder.materials import STUDY_LATTICES as LATTICES
+
 from .figures import LABELS, STYLE
 from .page import pm
+from .sections import failure_section, tables_where, wall_end_section
 from .speed import shear_over_bulk
 
 # Gerl and Zippelius, Phys. Rev. E 59, 2361 (1999), cond-mat/9808258.
@@ -229,10 +232,6 @@ def page(
     preset: str,
 ) -> str:
     """The speed study's page (markdown)."""
-    from runner.study import LATTICES
-
-    from .report import failure_section, tables_where, wall_end_section
-
     near = near_side_counts(rows)
     lines = [
         f"# e and beta against the impact speed: study `{info['name']}`",

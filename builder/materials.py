@@ -190,3 +190,13 @@ def spring_constant(
     """
     entry = calibrated(lattice, k2_over_k1)
     return wave_speed**2 * mass / (entry["c2"] * spacing**2), entry
+
+
+# The lattices a study names, and the disk each stands for: the square
+# lattice at two Poisson ratios (runner.study's grids, the pages' order).
+STUDY_LATTICES = {
+    "random": {"lattice": "random"},
+    "triangular": {"lattice": "triangular"},
+    "square_nu0.1": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.1)},
+    "square_nu0.3": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.3)},
+}

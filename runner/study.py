@@ -23,7 +23,7 @@ from analysis.result import UnreadableResult, read_result
 from builder.checks import Range, require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_bodies, write_scene
-from builder.materials import calibrated, square_ratio_for_poisson
+from builder.materials import STUDY_LATTICES, calibrated
 from builder.scene import (
     MODEL_READINGS,
     VN,
@@ -38,12 +38,7 @@ from .lammps_run import STYLE_LIBRARIES, data_to_restart
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
-LATTICES = {
-    "random": {"lattice": "random"},
-    "triangular": {"lattice": "triangular"},
-    "square_nu0.1": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.1)},
-    "square_nu0.3": {"lattice": "square", "k2_over_k1": square_ratio_for_poisson(0.3)},
-}
+LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
