@@ -32,7 +32,6 @@ COMBINATIONS = [
     ("drift_tail.py", ["--impacts", "README.md"], "--impacts"),
     ("fact_sensitivity.py", ["--from-csv", "--samples", "3"], "--samples"),
     ("fact_sensitivity.py", ["--docs", "--out", "{tmp}"], "--out"),
-    ("inside_wall.py", ["--docs"], "--docs"),
     ("large_disk.py", ["--ranks", "1", "1"], "--ranks"),
     ("model_readings.py", ["--from-csv", "--samples", "3"], "--samples"),
     ("model_readings.py", ["--docs", "--out", "{tmp}"], "--out"),
