@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import csv
 import re
 import sys
 import time
@@ -239,12 +240,12 @@ def parser() -> OneLineParser:
 def study_argument(text: str) -> str:
     """A study file's name (studies/<name>.toml) or path: its study becomes
     one of runner.study.PRESETS under the file's name."""
-    from .study import DOC_PAGES, PRESETS
+    from .study import AXES, DOC_PAGES, PRESETS
     from .study_file import STUDIES, read_study_file, study_path
 
     try:
         path = study_path(text)
-        study, page = read_study_file(path)
+        study, page, axes = read_study_file(path)
     except InputError as error:
         raise argparse.ArgumentTypeError(str(error)) from None
     own = STUDIES / f"{path.stem}.toml"
@@ -255,6 +256,8 @@ def study_argument(text: str) -> str:
     PRESETS[path.stem] = study
     if page:
         DOC_PAGES[path.stem] = page
+    if axes:
+        AXES[path.stem] = axes
     return path.stem
 
 
@@ -625,6 +628,51 @@ def refuse_idle_options(args: argparse.Namespace) -> None:
 
 
 def run_study_command(args) -> int:
+    """One study, or a study with axes: each of its combinations in turn,
+    then their impacts.csv rows together in runs/<name>/impacts.csv."""
+    from .study import AXES, PRESETS
+    from .study_file import axis_studies
+
+    if args.preset not in AXES:
+        return run_one_study(args)
+    if args.docs or args.from_tables:
+        option = "--docs" if args.docs else "--from-tables"
+        raise InputError(
+            f"{option}: the {args.preset} study has axes ({', '.join(AXES[args.preset])}); "
+            "each combination's tables and page go under runs/"
+        )
+    name = args.name or args.preset
+    status = 0
+    subs = axis_studies(PRESETS[args.preset], AXES[args.preset], name)
+    for sub in subs:
+        PRESETS[sub.name] = sub
+        print(f"{args.preset}: {sub.name}", flush=True)
+        status = max(
+            status,
+            run_one_study(
+                argparse.Namespace(**{**vars(args), "preset": sub.name, "name": sub.name})
+            ),
+        )
+    table = combine_tables([runs_folder() / sub.name for sub in subs], runs_folder() / name)
+    print(f"{len(subs)} studies of {args.preset}; their impacts together in {shown(table)}")
+    return status
+
+
+def combine_tables(folders: list[Path], out: Path) -> Path:
+    """The impacts.csv of several studies as one, in ``out``."""
+    from analysis.table import COLUMNS, write_csv
+
+    rows = []
+    for folder in folders:
+        with (folder / "impacts.csv").open() as handle:
+            rows += list(csv.DictReader(handle))
+    require_out_folder("--name", out)
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(rows, out / "impacts.csv", COLUMNS)
+    return out / "impacts.csv"
+
+
+def run_one_study(args) -> int:
     from analysis.report import report, report_from_tables
 
     from .driver import run_study

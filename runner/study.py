@@ -482,22 +482,26 @@ def cpu_name() -> str:
     return "unknown CPU"
 
 
-def load_presets() -> tuple[dict[str, Study], dict[str, str]]:
+def load_presets() -> tuple[dict[str, Study], dict[str, str], dict[str, dict]]:
     """The study files in studies/ (runner/study_file.py): each study by its
-    name, and the page in docs/ of those that have one."""
+    name, the page in docs/ of those that have one, and the axes of those
+    that have any."""
     from .study_file import STUDIES, read_study_file
 
-    presets, pages = {}, {}
+    presets, pages, axes = {}, {}, {}
     for path in sorted(STUDIES.glob("*.toml")):
-        presets[path.stem], page = read_study_file(path)
+        presets[path.stem], page, its_axes = read_study_file(path)
         if page:
             pages[path.stem] = page
-    return presets, pages
+        if its_axes:
+            axes[path.stem] = its_axes
+    return presets, pages, axes
 
 
-# The studies of studies/*.toml (paper, demo, speed, grazing, ...), and the
-# pages under docs/ of those that have one, written only with --docs.
-PRESETS, DOC_PAGES = load_presets()
+# The studies of studies/*.toml (paper, demo, speed, grazing, ...), the pages
+# under docs/ of those that have one (written only with --docs), and the
+# axes of those that run once per combination of some options' values.
+PRESETS, DOC_PAGES, AXES = load_presets()
 
 
 def state(job: dict) -> str:

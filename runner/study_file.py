@@ -14,10 +14,19 @@ Every key is a field of ``runner.study.Study`` (grid and scene) or of
 ``RunOptions`` (run); what a file leaves out takes the default. The study's
 name is the file's. The command line's options override the file's, and
 study.json records what ran.
+
+A scene or run option given a list of values is an axis: the study runs once
+for every combination of the axes' values, each a study of its own named
+<name>_<option>-<value>..., and their impacts.csv rows go together into
+runs/<name>/impacts.csv (whose columns record every reading and run option).
+
+    [scene]
+    wall_ka = [1.0, 10.0]            # two studies: <name>_wall_ka-1, <name>_wall_ka-10
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import tomllib
 from dataclasses import fields, replace
@@ -93,6 +102,7 @@ def read_study_file(path: Path):
         "run": {f.name for f in fields(RunOptions)},
     }
     values: dict = {}
+    axes: dict = {}
     for section in SECTIONS:
         table = data.get(section, {})
         if not isinstance(table, dict):
@@ -103,9 +113,17 @@ def read_study_file(path: Path):
                     f"{path}: [{section}] has no option {key!r}; options: "
                     f"{', '.join(sorted(allowed[section]))}"
                 )
-            if isinstance(value, list) != (key in LISTS):
-                kind = "a list" if key in LISTS else "one value"
-                raise InputError(f"{path}: [{section}] {key} must be {kind}, got {value!r}")
+            if key in LISTS and not isinstance(value, list):
+                raise InputError(f"{path}: [{section}] {key} must be a list, got {value!r}")
+            if isinstance(value, list) and key not in LISTS:
+                if section == "grid":
+                    raise InputError(f"{path}: [grid] {key} must be one value, got {value!r}")
+                if not value or len(set(map(repr, value))) != len(value):
+                    raise InputError(
+                        f"{path}: [{section}] {key}: an axis needs distinct values, got {value!r}"
+                    )
+                axes[(section, key)] = tuple(value)
+                value = value[0]
             values[(section, key)] = value
     grid = {k: v for (s, k), v in values.items() if s != "run"}
     if "gamma_deg" in grid:
@@ -122,12 +140,37 @@ def read_study_file(path: Path):
         study = Study(name=path.stem, **grid, options=replace(RunOptions(route="python"), **run))
     except TypeError as error:
         raise InputError(f"{path}: {error}") from None
-    return study, page
+    return study, page, {key: values for (section, key), values in axes.items()}
 
 
-def study_file_text(study, page: str = "") -> str:
-    """A study file that reads back as ``study`` (its options that differ
-    from the defaults)."""
+def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list:
+    """The study once for every combination of the axes' values (a scene
+    option or a run option each), named <name>_<option>-<value>...
+
+    Raises
+    ------
+    builder.errors.InputError
+        If a combination's name could not be a folder of runs/.
+    """
+    run_fields = {f.name for f in fields(RunOptions)}
+    name = name or study.name
+    out = []
+    for combination in itertools.product(*axes.values()):
+        scene, run, words = {}, {}, []
+        for key, value in zip(axes, combination):
+            (run if key in run_fields else scene)[key] = value
+            words.append(f"{key}-{value:g}" if isinstance(value, float) else f"{key}-{value}")
+        sub = replace(
+            study, name="_".join([name, *words]), options=replace(study.options, **run), **scene
+        )
+        out.append(sub)
+    return out
+
+
+def study_file_text(study, page: str = "", axes: dict | None = None) -> str:
+    """A study file that reads back as ``study`` and ``axes`` (its options
+    that differ from the defaults, and each axis's values)."""
+    axes = axes or {}
     from .study import Study
 
     default, run_default = Study(study.name), RunOptions(route="python")
@@ -136,13 +179,13 @@ def study_file_text(study, page: str = "") -> str:
     for field in fields(Study):
         if field.name in ("name", "options"):
             continue
-        value = getattr(study, field.name)
-        if value != getattr(default, field.name):
+        value = axes.get(field.name, getattr(study, field.name))
+        if field.name in axes or value != getattr(default, field.name):
             section = "grid" if field.name in GRID else "scene"
             sections[section].append(f"{field.name} = {toml_value(value)}")
     for field in fields(RunOptions):
-        value = getattr(study.options, field.name)
-        if value != getattr(run_default, field.name):
+        value = axes.get(field.name, getattr(study.options, field.name))
+        if field.name in axes or value != getattr(run_default, field.name):
             sections["run"].append(f"{field.name} = {toml_value(value)}")
     for section, body in sections.items():
         if body:

@@ -19,10 +19,10 @@ from tests.helpers import ROOT
 @pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
 def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
     """A file written from a study reads back as that study, exactly."""
-    study, page = read_study_file(path)
+    study, page, axes = read_study_file(path)
     again = tmp_path / path.name
-    again.write_text(study_file_text(study, page))
-    assert read_study_file(again) == (study, page)
+    again.write_text(study_file_text(study, page, axes))
+    assert read_study_file(again) == (study, page, axes)
 
 
 def test_the_papers_grid():
@@ -35,7 +35,7 @@ def test_the_papers_grid():
 def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
     path = tmp_path / "g.toml"
     path.write_text("[grid]\ngamma_deg = [45, 60]\n")
-    study, _ = read_study_file(path)
+    study, _, _ = read_study_file(path)
     assert study.cot_gamma == (1.0, 0.57735) and study.angles == 2
     assert study.gammas() == [45.0, 60.0]
 
@@ -43,7 +43,8 @@ def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
 def test_a_file_sets_scene_and_run_options(tmp_path):
     path = tmp_path / "walls.toml"
     path.write_text('[scene]\nwall_ka = 1.0\nn_wall = "density"\n[run]\ndt = 0.004\n')
-    study, page = read_study_file(path)
+    study, page, axes = read_study_file(path)
+    assert axes == {}
     assert study == Study(
         "walls", wall_ka=1.0, n_wall="density", options=RunOptions(route="python", dt=0.004)
     )
@@ -57,6 +58,8 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
         ("[walls]\n", "'walls' is not a section"),
         ("[grid]\nsamples = [1, 2]\n", "[grid] samples must be one value"),
+        ("[scene]\nwall_ka = [1.0, 1.0]\n", "an axis needs distinct values"),
+        ("[scene]\nwall_ka = []\n", "an axis needs distinct values"),
         ('[grid]\nlattices = "random"\n', "[grid] lattices must be a list"),
         ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
         ("[grid\n", "not a study file"),
@@ -112,3 +115,44 @@ def test_command_line_options_override_the_file(tmp_path, monkeypatch):
     study = study_from_args(args)
     assert (study.samples, study.angles, study.wall_ka) == (2, 4, 1.0)
     assert replace(study, name="mine", samples=5) == read_study_file(mine)[0]
+
+
+def test_a_list_of_values_is_an_axis_crossed_with_the_others(tmp_path):
+    from runner.study_file import axis_studies
+
+    path = tmp_path / "cross.toml"
+    path.write_text(
+        '[grid]\nsamples = 2\n[scene]\nwall_ka = [1.0, 10.0]\nwall_fixed = ["sides", "all"]\n'
+        "[run]\ndt = [0.008, 0.004]\n"
+    )
+    study, _, axes = read_study_file(path)
+    assert axes == {"wall_ka": (1.0, 10.0), "wall_fixed": ("sides", "all"), "dt": (0.008, 0.004)}
+    subs = axis_studies(study, axes)
+    assert len(subs) == 8 and len({s.name for s in subs}) == 8
+    assert subs[0].name == "cross_wall_ka-1_wall_fixed-sides_dt-0.008"
+    assert {(s.wall_ka, s.wall_fixed, s.options.dt) for s in subs} == {
+        (k, f, d) for k in (1.0, 10.0) for f in ("sides", "all") for d in (0.008, 0.004)
+    }
+    assert all(s.samples == 2 for s in subs)
+
+
+def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_path):
+    """Two walls, one sample at two angles each: four impacts in one table,
+    whose wall_ka column tells them apart."""
+    import csv
+
+    from runner.study import runs_folder
+
+    path = tmp_path / "axis_probe.toml"
+    path.write_text(
+        '[grid]\nlattices = ["random"]\ncot_gamma = [3.0, 1.0]\nsamples = 1\n'
+        "[scene]\nn_disk = 200\nwall_ka = [1.0, 10.0]\n"
+    )
+    proc = run_study_command(str(path), "--workers", "1")
+    assert proc.returncode == 0, proc.stderr
+    with (runs_folder() / "axis_probe" / "impacts.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    found = sorted((float(r["wall_ka"]), round(float(r["cot_gamma"]), 4)) for r in rows)
+    assert found == [(1.0, 1.0), (1.0, 3.0), (10.0, 1.0), (10.0, 3.0)]
+    proc = run_study_command(str(path), "--docs")
+    assert proc.returncode == 2 and "has axes (wall_ka)" in proc.stderr
