@@ -165,3 +165,67 @@ def draw(numbers: dict, folder) -> None:
     folder.mkdir(parents=True, exist_ok=True)
     fig.savefig(folder / "grazing_e.png", dpi=120)
     plt.close(fig)
+
+
+# What a reading's study.json may differ in from the study's and still be a
+# reading of it: everything but its name and the record of its run.
+NOT_A_READING = ("name", "wall_clock", "common_wall")
+
+
+def reading_differences(study: dict, reading: dict) -> str:
+    """The options a reading's study.json sets otherwise than the study's."""
+    words = []
+    for key in sorted(set(study) | set(reading)):
+        if key in NOT_A_READING or study.get(key) == reading.get(key):
+            continue
+        if isinstance(reading.get(key), dict):  # the run's options
+            inner = reading[key]
+            words += [
+                f"{k} {inner[k]}"
+                for k in sorted(inner)
+                if inner.get(k) != study.get(key, {}).get(k)
+            ]
+        else:
+            words.append(f"{key} {reading.get(key)}")
+    return ", ".join(words) or "none"
+
+
+def readings_section(study: dict, readings: dict[str, tuple[dict, list[dict], list[dict]]],
+                     resamples: int = 200) -> list[str]:  # fmt: skip
+    """The same grazing study under other readings, a row each: what differs,
+    the peak of e and whether e > 1 is significant (as above), and the share
+    of contacts whose disk centre came within 1 R of a held side."""
+    if not readings:
+        return []
+    lines = [
+        "## The same study under other readings",
+        "",
+        "Each row: this study's command with other options (`--name <reading>`), its "
+        "tables in `docs/<reading>/`; the peak and the largest mean as above, for the "
+        "random disk; near a side: the share of its contacts whose disk centre came within "
+        "1 R of a held side of the wall (column `side_clearance` < 1), where e measures the "
+        "wall's end as much as the impact.",
+        "",
+        "| reading | options that differ | impacts | failed | peak at tan gamma | (degrees) | "
+        "peak e | largest mean e | at, deg | (e - 1) / error | significant | near a side |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for name, (info, rows, failed) in readings.items():
+        for lattice, n in grazing_numbers(rows, resamples).items():
+            big = n["largest"]
+            if np.isfinite(n["peak_tan_gamma"]):
+                where = pm(n["peak_tan_gamma"], n["peak_tan_gamma_error"], 2)
+                degrees = f"{np.degrees(np.arctan(n['peak_tan_gamma'])):.1f}"
+                height = pm(n["peak_e"], n["peak_e_error"])
+            else:
+                where, degrees, height = "none inside the range", "-", "-"
+            mine = [r for r in rows if r["study_lattice"] == lattice]
+            near = np.mean([float(r["side_clearance"]) < 1.0 for r in mine])
+            label = name if len(info["lattices"]) == 1 else f"{name} ({lattice})"
+            lines.append(
+                f"| {label} | {reading_differences(study, info)} | {len(mine)} | {len(failed)} | "
+                f"{where} | {degrees} | {height} | {pm(big['e'], big['error'])} | "
+                f"{big['gamma_deg']:g} | {big['z']:+.1f} | "
+                f"{'yes' if big['z'] > SIGNIFICANT else 'no'} | {near:.0%} |"
+            )
+    return lines + [""]

@@ -221,6 +221,7 @@ def report(
     page: Path | None = None,
     preset: str = "paper",
     tables: Path | None = None,
+    readings: dict[str, Path] | None = None,
 ) -> dict:
     """Write impacts.csv, means.csv, fits.json, failed.csv, figures/ and results.md for a study.
 
@@ -238,6 +239,9 @@ def report(
     tables : pathlib.Path, optional
         A folder that gets a copy of the tables and study.json, from which
         ``report_from_tables`` remakes the page (docs/results/ for the paper).
+    readings : dict of str to pathlib.Path, optional
+        Table folders of the same study under other options, by name, which a
+        grazing page tabulates (``grazing.readings_section``).
 
     Returns
     -------
@@ -258,6 +262,7 @@ def report(
         resamples,
         preset,
         shown_path(tables) if tables is not None else "",
+        readings,
     )
     if tables is not None:
         tables.mkdir(parents=True, exist_ok=True)
@@ -274,6 +279,7 @@ def report_from_tables(
     resamples: int = 200,
     preset: str = "paper",
     out: Path | None = None,
+    readings: dict[str, Path] | None = None,
 ) -> dict:
     """The page and figures of a study from its tables alone (docs/results/).
 
@@ -284,7 +290,7 @@ def report_from_tables(
         ``tables``); read only, unless it is ``out``.
     page : pathlib.Path
         Where the page goes; the figures go into ``figures/`` beside it.
-    resamples, preset
+    resamples, preset, readings
         As for ``report``.
     out : pathlib.Path, optional
         Where the tables (with means.csv and fits.json made again) and
@@ -296,22 +302,7 @@ def report_from_tables(
         As ``report``.
     """
 
-    def read(name: str) -> list[dict]:
-        with (tables / name).open() as handle:
-            return list(csv.DictReader(handle))
-
-    # tables from elsewhere are checked as result.json files are: a number
-    # that is missing or not finite stops the page, before anything is written
-    try:
-        info = json.loads((tables / "study.json").read_text())
-        rows, failed = read("impacts.csv"), read("failed.csv")
-        rows = [with_model_readings(row) for row in rows]
-        for line, row in enumerate(rows, start=2):
-            bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
-            if bad:
-                raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
-    except (OSError, ValueError, KeyError) as error:
-        raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
+    info, rows, failed = read_tables(tables)
     out = Path(out) if out is not None else Path(tables)
     out.mkdir(parents=True, exist_ok=True)
     if out.resolve() != Path(tables).resolve():
@@ -325,7 +316,37 @@ def report_from_tables(
         resamples,
         preset,
         shown_path(tables),
+        readings,
     )
+
+
+def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
+    """study.json, impacts.csv's rows and failed.csv's of a study's tables.
+
+    Tables from elsewhere are checked as result.json files are: a number that
+    is missing or not finite stops the page, before anything is written.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If the folder holds no study's tables, or a row lacks a number.
+    """
+
+    def read(name: str) -> list[dict]:
+        with (tables / name).open() as handle:
+            return list(csv.DictReader(handle))
+
+    try:
+        info = json.loads((tables / "study.json").read_text())
+        rows, failed = read("impacts.csv"), read("failed.csv")
+        rows = [with_model_readings(row) for row in rows]
+        for line, row in enumerate(rows, start=2):
+            bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
+            if bad:
+                raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
+    except (OSError, ValueError, KeyError) as error:
+        raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
+    return info, rows, failed
 
 
 def shown_path(path: Path) -> str:
@@ -353,6 +374,7 @@ def render(
     resamples: int,
     preset: str,
     tables: str = "",
+    readings: dict[str, Path] | None = None,
 ) -> dict:
     """Tables into ``out``, the figures and the page (see ``report``)."""
     rows = sorted(
@@ -378,6 +400,8 @@ def render(
         fits["grazing"] = grazing.grazing_numbers(rows, resamples)
         grazing.draw(fits["grazing"], figure_dir)
         extra = grazing.grazing_section(fits["grazing"], shown_figures)
+        others = {name: read_tables(folder) for name, folder in (readings or {}).items()}
+        extra += grazing.readings_section(info, others, resamples)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     seconds = sum(float(r["wall_seconds"]) for r in rows)

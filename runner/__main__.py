@@ -240,12 +240,12 @@ def parser() -> OneLineParser:
 def study_argument(text: str) -> str:
     """A study file's name (studies/<name>.toml) or path: its study becomes
     one of runner.study.PRESETS under the file's name."""
-    from .study import AXES, DOC_PAGES, PRESETS
+    from .study import AXES, DOC_PAGES, PRESETS, READINGS
     from .study_file import STUDIES, read_study_file, study_path
 
     try:
         path = study_path(text)
-        study, page, axes = read_study_file(path)
+        described = read_study_file(path)
     except InputError as error:
         raise argparse.ArgumentTypeError(str(error)) from None
     own = STUDIES / f"{path.stem}.toml"
@@ -253,11 +253,13 @@ def study_argument(text: str) -> str:
         raise argparse.ArgumentTypeError(
             f"{path}: {own} has the name {path.stem!r} already; rename the file"
         )
-    PRESETS[path.stem] = study
-    if page:
-        DOC_PAGES[path.stem] = page
-    if axes:
-        AXES[path.stem] = axes
+    PRESETS[path.stem] = described.study
+    if described.page:
+        DOC_PAGES[path.stem] = described.page
+    if described.axes:
+        AXES[path.stem] = described.axes
+    if described.readings:
+        READINGS[path.stem] = described.readings
     return path.stem
 
 
@@ -672,16 +674,36 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
     return out / "impacts.csv"
 
 
+def remake_tabulating_page(preset: str, readings: dict[str, Path]) -> None:
+    """The preset's page in docs/ again from its committed tables, with the
+    table of its readings."""
+    from analysis.report import report_from_tables
+
+    from .study import DOC_PAGES, ROOT
+
+    page = ROOT / "docs" / f"{DOC_PAGES[preset]}.md"
+    report_from_tables(page.with_suffix(""), page, preset=preset, readings=readings)
+    print(f"its row is on {shown(page)}")
+
+
 def run_one_study(args) -> int:
     from analysis.report import report, report_from_tables
 
     from .driver import run_study
-    from .study import DOC_PAGES, ROOT, record_wall_clock, study_from_args
+    from .study import DOC_PAGES, READINGS, ROOT, record_wall_clock, study_from_args
 
     docs = ROOT / "docs"
     refuse_idle_options(args)
     # the preset's page, or for another --name (a reading of the preset) its own
     doc_name = DOC_PAGES.get(args.preset) if args.name in (None, args.preset) else args.name
+    # a reading the preset's page tabulates: its tables go into docs/<name>/ and
+    # the preset's page is made again with them; its own page stays under runs/
+    tabulated = args.docs and doc_name in READINGS.get(args.preset, ())
+    readings = {
+        name: docs / name
+        for name in READINGS.get(args.preset, ())
+        if (docs / name / "impacts.csv").is_file()
+    }
     if args.docs and args.preset not in DOC_PAGES:
         raise InputError(
             f"--docs: the {args.preset} study has no page in docs/ (its file's page); "
@@ -698,17 +720,24 @@ def run_one_study(args) -> int:
         name = args.name or f"{args.preset}_from_tables"
         out = docs / doc_name if args.docs else runs_folder() / name
         page = docs / f"{doc_name}.md" if args.docs else out / "results.md"
+        if tabulated:
+            page = require_out_folder("--name", runs_folder() / name) / "results.md"
+            page.parent.mkdir(parents=True, exist_ok=True)
         require_out_folder("--name", out)
         if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
             raise InputError(
                 f"--name {name}: {out} holds a study, which the tables would replace; "
                 "give another --name"
             )
-        summary = report_from_tables(args.from_tables, page, preset=args.preset, out=out)
+        summary = report_from_tables(
+            args.from_tables, page, preset=args.preset, out=out, readings=readings
+        )
         print(
             f"{summary['rows']} impacts, {summary['failed']} failed; "
             f"results in {shown(summary['page'])}"
         )
+        if tabulated:
+            remake_tabulating_page(args.preset, readings)
         return 0
     cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
     study = study_from_args(args)
@@ -718,10 +747,14 @@ def run_one_study(args) -> int:
         record_wall_clock(study, time.monotonic() - start, counts)
     summary = report(
         study,
-        page=docs / f"{doc_name}.md" if args.docs else None,
+        page=docs / f"{doc_name}.md" if args.docs and not tabulated else None,
         preset=args.preset,
         tables=docs / doc_name if args.docs else None,
+        readings=readings,
     )
+    if tabulated:
+        readings[doc_name] = docs / doc_name
+        remake_tabulating_page(args.preset, readings)
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
     drift = (
         f", {summary['drift_exceeded']} above --max-drift {study.options.max_drift:g}"

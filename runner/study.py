@@ -482,26 +482,30 @@ def cpu_name() -> str:
     return "unknown CPU"
 
 
-def load_presets() -> tuple[dict[str, Study], dict[str, str], dict[str, dict]]:
+def load_presets() -> tuple[dict, dict, dict, dict]:
     """The study files in studies/ (runner/study_file.py): each study by its
-    name, the page in docs/ of those that have one, and the axes of those
-    that have any."""
+    name; the page in docs/ of those that have one; the axes of those that
+    have any; the readings their pages tabulate."""
     from .study_file import STUDIES, read_study_file
 
-    presets, pages, axes = {}, {}, {}
+    presets, pages, axes, readings = {}, {}, {}, {}
     for path in sorted(STUDIES.glob("*.toml")):
-        presets[path.stem], page, its_axes = read_study_file(path)
-        if page:
-            pages[path.stem] = page
-        if its_axes:
-            axes[path.stem] = its_axes
-    return presets, pages, axes
+        described = read_study_file(path)
+        presets[path.stem] = described.study
+        if described.page:
+            pages[path.stem] = described.page
+        if described.axes:
+            axes[path.stem] = described.axes
+        if described.readings:
+            readings[path.stem] = described.readings
+    return presets, pages, axes, readings
 
 
 # The studies of studies/*.toml (paper, demo, speed, grazing, ...), the pages
-# under docs/ of those that have one (written only with --docs), and the
-# axes of those that run once per combination of some options' values.
-PRESETS, DOC_PAGES, AXES = load_presets()
+# under docs/ of those that have one (written only with --docs), the axes of
+# those that run once per combination of some options' values, and the
+# readings (docs/<name>/ tables of the same study) that a page tabulates.
+PRESETS, DOC_PAGES, AXES, READINGS = load_presets()
 
 
 def state(job: dict) -> str:

@@ -2,6 +2,8 @@
 
     # studies/paper.toml
     page = "results"                 # its page in docs/ (with --docs), if any
+    readings = []                    # docs/<name>/ tables of the same study under
+                                     # other readings, which the page tabulates
     [grid]
     lattices = ["random", "triangular", "square_nu0.1", "square_nu0.3"]
     angles = 16                      # or cot_gamma = [...] or gamma_deg = [...]
@@ -29,7 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 import tomllib
-from dataclasses import fields, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 from builder.errors import InputError
@@ -62,17 +64,29 @@ def study_path(name_or_path: str) -> Path:
     return path
 
 
+@dataclass(frozen=True)
+class StudyFile:
+    """What a study file says: the study, its page in docs/ ('' for none),
+    its axes (option -> values) and the readings its page tabulates (names
+    of docs/ folders holding the same study's tables under other options)."""
+
+    study: object  # runner.study.Study
+    page: str = ""
+    axes: dict = field(default_factory=dict)
+    readings: tuple[str, ...] = ()
+
+
 def cot_of_degrees(degrees: float) -> float:
     """cot gamma of an angle in degrees, to 6 decimals (what a study's folder names keep)."""
     return round(1.0 / math.tan(math.radians(degrees)), 6)
 
 
-def read_study_file(path: Path):
-    """The study a file describes, and its page's name in docs/ ('' for none).
+def read_study_file(path: Path) -> StudyFile:
+    """The study a file describes, its page, axes and readings.
 
     Returns
     -------
-    (runner.study.Study, str)
+    StudyFile
 
     Raises
     ------
@@ -89,6 +103,11 @@ def read_study_file(path: Path):
     page = data.pop("page", "")
     if not isinstance(page, str):
         raise InputError(f"{path}: page must be a name in docs/, got {page!r}")
+    readings = data.pop("readings", [])
+    if not isinstance(readings, list) or not all(isinstance(r, str) for r in readings):
+        raise InputError(f"{path}: readings must be a list of names in docs/, got {readings!r}")
+    if readings and not page:
+        raise InputError(f"{path}: readings are tabulated on the study's page: give page")
     unknown = set(data) - set(SECTIONS)
     if unknown:
         raise InputError(
@@ -140,7 +159,8 @@ def read_study_file(path: Path):
         study = Study(name=path.stem, **grid, options=replace(RunOptions(route="python"), **run))
     except TypeError as error:
         raise InputError(f"{path}: {error}") from None
-    return study, page, {key: values for (section, key), values in axes.items()}
+    axes = {key: values for (section, key), values in axes.items()}
+    return StudyFile(study, page, axes, tuple(readings))
 
 
 def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list:
@@ -167,26 +187,28 @@ def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list
     return out
 
 
-def study_file_text(study, page: str = "", axes: dict | None = None) -> str:
-    """A study file that reads back as ``study`` and ``axes`` (its options
-    that differ from the defaults, and each axis's values)."""
-    axes = axes or {}
+def study_file_text(described: StudyFile) -> str:
+    """A study file that reads back as ``described`` (its options that differ
+    from the defaults, each axis's values, the page and its readings)."""
+    study, page, axes = described.study, described.page, described.axes
     from .study import Study
 
     default, run_default = Study(study.name), RunOptions(route="python")
-    lines = [f"page = {page!r}".replace("'", '"')] if page else []
+    lines = [f"page = {toml_value(page)}"] if page else []
+    if described.readings:
+        lines.append(f"readings = {toml_value(list(described.readings))}")
     sections = {"grid": [], "scene": [], "run": []}
-    for field in fields(Study):
-        if field.name in ("name", "options"):
+    for option in fields(Study):
+        if option.name in ("name", "options"):
             continue
-        value = axes.get(field.name, getattr(study, field.name))
-        if field.name in axes or value != getattr(default, field.name):
-            section = "grid" if field.name in GRID else "scene"
-            sections[section].append(f"{field.name} = {toml_value(value)}")
-    for field in fields(RunOptions):
-        value = axes.get(field.name, getattr(study.options, field.name))
-        if field.name in axes or value != getattr(run_default, field.name):
-            sections["run"].append(f"{field.name} = {toml_value(value)}")
+        value = axes.get(option.name, getattr(study, option.name))
+        if option.name in axes or value != getattr(default, option.name):
+            section = "grid" if option.name in GRID else "scene"
+            sections[section].append(f"{option.name} = {toml_value(value)}")
+    for option in fields(RunOptions):
+        value = axes.get(option.name, getattr(study.options, option.name))
+        if option.name in axes or value != getattr(run_default, option.name):
+            sections["run"].append(f"{option.name} = {toml_value(value)}")
     for section, body in sections.items():
         if body:
             lines += ["", f"[{section}]", *body]

@@ -55,3 +55,34 @@ def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
         again = folder / "again.md"  # the page comes back from its tables alone
         report_from_tables(folder, again, resamples=20)
         assert again.read_text() == page.read_text()
+
+
+def test_a_reading_is_a_row_of_the_page_with_what_differs(tmp_path):
+    """Two readings of one synthetic study (another wall stiffness, a 0.1
+    speed): one row each, naming what differs, with its own peak."""
+    from analysis.grazing import reading_differences
+    from analysis.report import report_from_tables
+
+    def rows_peaking_at(top: float) -> list[dict]:
+        return impact_rows(
+            "random", lambda psi: -0.5, e_of=lambda psi: top - 0.004 * (1.0 / psi - 4.0) ** 2,
+            seeds=12, rng_seed=4,
+        )  # fmt: skip
+
+    study = write_tables(tmp_path / "main", rows_peaking_at(1.05), ["random"])
+    stiff = write_tables(tmp_path / "stiff", rows_peaking_at(1.2), ["random"], wall_ka=10.0)
+    fast = write_tables(
+        tmp_path / "fast", rows_peaking_at(0.9), ["random"],
+        options={"dt": 0.004, "stop_rule": "predict", "max_drift": 0.05},
+    )  # fmt: skip
+    page = tmp_path / "page.md"
+    report_from_tables(study, page, resamples=20, readings={"stiff": stiff, "fast": fast})
+    section = page.read_text().split("## The same study under other readings")[1]
+    rows = {x.split(" | ")[0].lstrip("| "): x for x in section.splitlines() if x.startswith("| ")}
+    assert " wall_ka 10.0 " in rows["stiff"] and " dt 0.004 " in rows["fast"]
+    assert rows["stiff"].split(" | ")[6].startswith("1.2")  # its own peak e
+    info = json.loads((study / "study.json").read_text())
+    assert reading_differences(info, info) == "none"
+    first = page.read_text()  # the same page again from the same tables
+    report_from_tables(study, page, resamples=20, readings={"stiff": stiff, "fast": fast})
+    assert page.read_text() == first

@@ -19,10 +19,10 @@ from tests.helpers import ROOT
 @pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
 def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
     """A file written from a study reads back as that study, exactly."""
-    study, page, axes = read_study_file(path)
+    described = read_study_file(path)
     again = tmp_path / path.name
-    again.write_text(study_file_text(study, page, axes))
-    assert read_study_file(again) == (study, page, axes)
+    again.write_text(study_file_text(described))
+    assert read_study_file(again) == described
 
 
 def test_the_papers_grid():
@@ -35,7 +35,7 @@ def test_the_papers_grid():
 def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
     path = tmp_path / "g.toml"
     path.write_text("[grid]\ngamma_deg = [45, 60]\n")
-    study, _, _ = read_study_file(path)
+    study = read_study_file(path).study
     assert study.cot_gamma == (1.0, 0.57735) and study.angles == 2
     assert study.gammas() == [45.0, 60.0]
 
@@ -43,8 +43,9 @@ def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
 def test_a_file_sets_scene_and_run_options(tmp_path):
     path = tmp_path / "walls.toml"
     path.write_text('[scene]\nwall_ka = 1.0\nn_wall = "density"\n[run]\ndt = 0.004\n')
-    study, page, axes = read_study_file(path)
-    assert axes == {}
+    described = read_study_file(path)
+    study, page = described.study, described.page
+    assert described.axes == {} and described.readings == ()
     assert study == Study(
         "walls", wall_ka=1.0, n_wall="density", options=RunOptions(route="python", dt=0.004)
     )
@@ -64,6 +65,8 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
         ("[grid\n", "not a study file"),
         ("page = 3\n", "page must be a name"),
+        ('readings = ["x"]\n', "readings are tabulated on the study's page"),
+        ('page = "p"\nreadings = "x"\n', "readings must be a list"),
     ],
 )
 def test_a_bad_file_is_refused_naming_it(tmp_path, text, message):
@@ -114,7 +117,7 @@ def test_command_line_options_override_the_file(tmp_path, monkeypatch):
     args = parser().parse_args(["study", str(mine), "--samples", "2", "--name", "mine_probe"])
     study = study_from_args(args)
     assert (study.samples, study.angles, study.wall_ka) == (2, 4, 1.0)
-    assert replace(study, name="mine", samples=5) == read_study_file(mine)[0]
+    assert replace(study, name="mine", samples=5) == read_study_file(mine).study
 
 
 def test_a_list_of_values_is_an_axis_crossed_with_the_others(tmp_path):
@@ -125,7 +128,8 @@ def test_a_list_of_values_is_an_axis_crossed_with_the_others(tmp_path):
         '[grid]\nsamples = 2\n[scene]\nwall_ka = [1.0, 10.0]\nwall_fixed = ["sides", "all"]\n'
         "[run]\ndt = [0.008, 0.004]\n"
     )
-    study, _, axes = read_study_file(path)
+    described = read_study_file(path)
+    study, axes = described.study, described.axes
     assert axes == {"wall_ka": (1.0, 10.0), "wall_fixed": ("sides", "all"), "dt": (0.008, 0.004)}
     subs = axis_studies(study, axes)
     assert len(subs) == 8 and len({s.name for s in subs}) == 8
