@@ -106,7 +106,13 @@ def impact_differences(before: list[dict], after: list[dict], quantity: str) -> 
     in both: how far the change moved single impacts."""
 
     def key(row: dict) -> tuple:
-        return row["study_lattice"], int(float(row["seed"])), round(float(row["gamma_deg"]), 6)
+        speed = round(float(row.get("vn") or "nan"), 9)
+        return (
+            row["study_lattice"],
+            int(float(row["seed"])),
+            round(float(row["gamma_deg"]), 6),
+            speed,
+        )
 
     old = {key(r): float(r[quantity]) for r in before}
     return np.array([float(r[quantity]) - old[key(r)] for r in after if key(r) in old])

@@ -67,8 +67,8 @@ def main(argv: list[str] | None = None) -> int:
         with args.after.open() as handle:
             after = list(csv.DictReader(handle))
         differences = paired_differences(before, after)
-    except (InputError, ValueError) as error:
-        return refuse(__file__, InputError(str(error)))
+    except (InputError, ValueError, KeyError) as error:
+        return refuse(__file__, InputError(f"the tables are not alike: {error}"))
     result = summary(differences, WITHIN)
     rows = [
         [

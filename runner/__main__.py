@@ -638,10 +638,17 @@ def run_study_command(args) -> int:
     if args.preset not in AXES:
         return run_one_study(args)
     if args.docs or args.from_tables:
-        option = "--docs" if args.docs else "--from-tables"
+        given = "--docs" if args.docs else "--from-tables"
         raise InputError(
-            f"{option}: the {args.preset} study has axes ({', '.join(AXES[args.preset])}); "
+            f"{given}: the {args.preset} study has axes ({', '.join(AXES[args.preset])}); "
             "each combination's tables and page go under runs/"
+        )
+    flattened = [key for key in AXES[args.preset] if getattr(args, key, None) is not None]
+    if flattened:
+        key = flattened[0]
+        raise InputError(
+            f"{option(key)}: {key} is an axis of the {args.preset} study "
+            f"({', '.join(map(str, AXES[args.preset][key]))}); change its values in the file"
         )
     name = args.name or args.preset
     status = 0
@@ -664,10 +671,13 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
     """The impacts.csv of several studies as one, in ``out``."""
     from analysis.table import COLUMNS, write_csv
 
+    if (out / "study.json").exists():
+        raise InputError(f"--name {out.name}: {out} holds a study; give another --name")
     rows = []
     for folder in folders:
-        with (folder / "impacts.csv").open() as handle:
-            rows += list(csv.DictReader(handle))
+        if (folder / "impacts.csv").is_file():  # a study with no impact done has none
+            with (folder / "impacts.csv").open() as handle:
+                rows += list(csv.DictReader(handle))
     require_out_folder("--name", out)
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "impacts.csv", COLUMNS)

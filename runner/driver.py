@@ -6,10 +6,11 @@ workers there are.
 
 from __future__ import annotations
 
+import shutil
 import time
 
 from .clusters import ClusterSpec, dask_client, replace_ended_jobs
-from .study import Study, state
+from .study import BODIES_FOLDER, Study, state
 from .tasks import WORKER_PHASES, group_task
 
 PROGRESS_EVERY = 10.0  # seconds between progress lines
@@ -114,13 +115,18 @@ def run_study(
         flush=True,
     )
     counts = {"ran": len(todo), "worker_seconds": dict.fromkeys(WORKER_PHASES, 0.0)}
-    if todo:
-        if client is not None:
-            counts.update(drive(study, jobs, todo, client))
-        else:
-            spec = cluster or ClusterSpec(workers=workers)
-            with dask_client(spec) as own:
-                counts.update(drive(study, jobs, todo, own, spec.size()))
+    try:
+        if todo:
+            if client is not None:
+                counts.update(drive(study, jobs, todo, client))
+            else:
+                spec = cluster or ClusterSpec(workers=workers)
+                with dask_client(spec) as own:
+                    counts.update(drive(study, jobs, todo, own, spec.size()))
+    finally:
+        # the workers' scratch (runner.study.SampleBodies), also what workers
+        # that crashed left: no task of this study runs any more
+        shutil.rmtree(study.folder / BODIES_FOLDER, ignore_errors=True)
     return {**study.summary(jobs), **counts}
 
 

@@ -191,10 +191,11 @@ def run_python(variables: dict[str, str], log: Path) -> float:
     return time.perf_counter() - start
 
 
-def data_to_restart(data: Path, restart: Path, springs: str) -> Path:
+def data_to_restart(data: Path, restart: Path, springs: str, log: Path | None = None) -> Path:
     """Write the data file ``data`` of bodies as a binary restart, in this
-    process (decks/write_restart.lmp): the deck reads it in a tenth of
-    read_data's time, into the same atoms in the same order.
+    process (decks/write_restart.lmp), LAMMPS's log into ``log`` (none if
+    not given): the deck reads it in a tenth of read_data's time, into the
+    same atoms in the same order.
 
     Returns
     -------
@@ -208,7 +209,7 @@ def data_to_restart(data: Path, restart: Path, springs: str) -> Path:
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
-        lmp = lammps(cmdargs=command_line(variables, Path(os.devnull))[2:])
+        lmp = lammps(cmdargs=command_line(variables, log or Path(os.devnull))[2:])
         register_styles(lmp)
         lmp.file(str(RESTART_DECK))
         lmp.close()

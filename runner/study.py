@@ -8,12 +8,11 @@ what is neither, so a killed study loses nothing already done.
 
 from __future__ import annotations
 
-import atexit
 import json
 import os
 import shutil
+import socket
 import sys
-import tempfile
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -60,6 +59,9 @@ CORRUPT = "result.json.corrupt"
 # triangular and square disks' walls before every lattice met the random
 # disk's) is moved aside to a name with this suffix, and its impact runs again.
 OTHER_WALL = ".other-wall"
+# An impact's mark that a worker started it (runner/tasks.py), which
+# rebuilding its scene leaves in its folder.
+STARTED = "started.json"
 # What rebuilding or pruning a folder leaves in it.
 SET_ASIDE = (CORRUPT, "result.json" + OTHER_WALL, "failed.json" + OTHER_WALL)
 
@@ -289,12 +291,12 @@ class Study:
         half-way starts over); a result moved aside stays. The data file is
         its sample's bodies, written once per process (``SAMPLE_BODIES``)."""
         folder = Path(job["folder"])
-        if folder.is_dir():
-            for path in folder.iterdir():
-                if path.name not in SET_ASIDE:
-                    shutil.rmtree(path) if path.is_dir() else path.unlink()
+        folder.mkdir(parents=True, exist_ok=True)
+        for path in folder.iterdir():
+            if path.name not in (*SET_ASIDE, STARTED):
+                shutil.rmtree(path) if path.is_dir() else path.unlink()
         scene = build_scene(self.spec(job))
-        bodies = SAMPLE_BODIES.path(scene, self.options.springs)
+        bodies = SAMPLE_BODIES.path(scene, self.options.springs, self.folder, folder / "log.lammps")
         return write_scene(scene, folder, self.options.springs, bodies=bodies, restart=True)
 
     def summary(self, jobs: list[dict]) -> dict:
@@ -303,37 +305,55 @@ class Study:
         return counts
 
 
+# Where a study's workers keep the bodies of the samples they run: a folder
+# per worker process under the study's folder, which the driver removes when
+# the study's run ends (a worker that LAMMPS ended cannot clean up itself).
+BODIES_FOLDER = ".bodies"
+
+
 class SampleBodies:
     """The bodies of the samples this process runs, as binary restarts of
     their data files: one per sample (its bodies in their own frames, which
-    its angles and speeds share; the deck places the disk), in a folder of the
-    process's own under the system's temporary folder, the last few kept.
-    Only the disk's placement and velocity differ between a sample's impacts
+    its angles and speeds share; the deck places the disk), in the study's
+    runs/<study>/.bodies/<host>-<pid>/, the last few kept. Only the disk's
+    placement and velocity differ between a sample's impacts
     (builder.lammps_data); the restart is read in a tenth of the data file's
-    time, into the same atoms in the same order (tests/test_sample_bodies.py)."""
+    time, into the same atoms in the same order (tests/test_sample_bodies.py;
+    on one rank: on several, LAMMPS splits the box among them, and a restart
+    of the unplaced bodies has another box than a placed data file)."""
 
     KEPT = 8
 
     def __init__(self) -> None:
-        self.folder: Path | None = None
         self.files: dict[str, Path] = {}
         self.written = 0
 
-    def path(self, scene, springs: str) -> Path:
+    def path(self, scene, springs: str, study_folder: Path, log: Path) -> Path:
+        """The restart of ``scene``'s sample, written if this process has not.
+
+        LAMMPS writes it with its log in ``log`` (an impact's log.lammps: an
+        error there, which ends this process, is its impact's failure).
+
+        Raises
+        ------
+        builder.errors.InputError
+            If the folder's path is not one word, which LAMMPS needs.
+        """
         spec = asdict(scene.spec)
         for placement in ("gamma_deg", "vn", "contact_time_guess", "start_gap"):
             spec.pop(placement)
-        key = json.dumps([spec, springs], sort_keys=True)
+        key = json.dumps([spec, springs, str(study_folder)], sort_keys=True)
         if key not in self.files:
-            if self.folder is None:
-                self.folder = Path(tempfile.mkdtemp(prefix="impact-bodies-"))
-                atexit.register(shutil.rmtree, self.folder, True)
+            folder = study_folder / BODIES_FOLDER / f"{socket.gethostname()}-{os.getpid()}"
+            if problem := word_problem(str(folder)):
+                raise InputError(f"the workers' folder for the bodies {problem}: {folder}")
+            folder.mkdir(parents=True, exist_ok=True)
             if len(self.files) >= self.KEPT:
                 self.files.pop(next(iter(self.files))).unlink(missing_ok=True)
             self.written += 1
-            data = self.folder / f"{scene.spec.lattice}-s{scene.spec.seed}-{self.written}.data"
+            data = folder / f"{scene.spec.lattice}-s{scene.spec.seed}-{self.written}.data"
             write_bodies(scene, data, springs)
-            self.files[key] = data_to_restart(data, data.with_suffix(".restart"), springs)
+            self.files[key] = data_to_restart(data, data.with_suffix(".restart"), springs, log)
             data.unlink()
         return self.files[key]
 

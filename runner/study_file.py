@@ -35,6 +35,7 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 from builder.errors import InputError
+from builder.scene import ANGLE
 
 from .options import RunOptions
 
@@ -137,9 +138,11 @@ def read_study_file(path: Path) -> StudyFile:
             if isinstance(value, list) and key not in LISTS:
                 if section == "grid":
                     raise InputError(f"{path}: [grid] {key} must be one value, got {value!r}")
-                if not value or len(set(map(repr, value))) != len(value):
+                words = [axis_word(v) for v in value]
+                if not value or len(set(words)) != len(value):
                     raise InputError(
-                        f"{path}: [{section}] {key}: an axis needs distinct values, got {value!r}"
+                        f"{path}: [{section}] {key}: an axis needs values distinct in their "
+                        f"folder names ({', '.join(words) or 'none'}), got {value!r}"
                     )
                 axes[(section, key)] = tuple(value)
                 value = value[0]
@@ -148,6 +151,10 @@ def read_study_file(path: Path) -> StudyFile:
     if "gamma_deg" in grid:
         if "cot_gamma" in grid:
             raise InputError(f"{path}: [grid] gives both gamma_deg and cot_gamma; give one")
+        for degrees in grid["gamma_deg"]:
+            if isinstance(degrees, bool) or not isinstance(degrees, (int, float)):
+                raise InputError(f"{path}: [grid] gamma_deg must be numbers, got {degrees!r}")
+            ANGLE.check(f"{path}: [grid] gamma_deg", degrees)
         grid["cot_gamma"] = [cot_of_degrees(g) for g in grid.pop("gamma_deg")]
     for key in LISTS:
         if key in grid:
@@ -161,6 +168,11 @@ def read_study_file(path: Path) -> StudyFile:
         raise InputError(f"{path}: {error}") from None
     axes = {key: values for (section, key), values in axes.items()}
     return StudyFile(study, page, axes, tuple(readings))
+
+
+def axis_word(value) -> str:
+    """A value of an axis as its studies' folder names write it."""
+    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list:
@@ -179,7 +191,7 @@ def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list
         scene, run, words = {}, {}, []
         for key, value in zip(axes, combination):
             (run if key in run_fields else scene)[key] = value
-            words.append(f"{key}-{value:g}" if isinstance(value, float) else f"{key}-{value}")
+            words.append(f"{key}-{axis_word(value)}")
         sub = replace(
             study, name="_".join([name, *words]), options=replace(study.options, **run), **scene
         )

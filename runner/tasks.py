@@ -29,9 +29,8 @@ from analysis.result import write_json_atomically
 
 from .impact import run_scene
 from .lammps_run import lammps_error
-from .study import Study, prune
+from .study import STARTED, Study, prune
 
-STARTED = "started.json"
 # Starts of one impact that may end their worker without a LAMMPS error
 # (killed from outside) before it counts as failed: a crash that leaves no
 # ERROR line (a segfault, the kernel's OOM killer) must not run for ever.
@@ -85,10 +84,13 @@ def impact_task(study: Study, job: dict) -> dict:
         )
     start = time.perf_counter()
     try:
-        study.build(job)  # afresh: what an earlier start left goes
-        built = time.perf_counter()
+        # marked before building: writing the sample's restart runs LAMMPS too,
+        # and an error there ends this process as one in the run does
         started = {"attempts": attempts + 1, "host": socket.gethostname(), "pid": os.getpid()}
+        folder.mkdir(parents=True, exist_ok=True)
         write_json_atomically(started, folder / STARTED)
+        study.build(job)  # afresh: what an earlier start left goes, but the mark
+        built = time.perf_counter()
         result = run_scene(folder, study.options)
     except Exception as error:  # a Python error, or LAMMPS's with exceptions built in
         return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))

@@ -8,12 +8,13 @@ import filecmp
 import numpy as np
 import pytest
 
+from builder.errors import InputError
 from builder.lammps_data import data_file_text, write_bodies, write_scene
 from builder.scene import DISK, SceneSpec, build_scene, placement_quantum
 from runner.impact import run_scene
 from runner.lammps_run import data_to_restart
 from runner.options import RunOptions
-from runner.study import SampleBodies
+from runner.study import BODIES_FOLDER, SampleBodies
 from tests.helpers import SMALL
 
 
@@ -66,11 +67,32 @@ def test_bodies_and_placed_scene_run_bit_for_bit(tmp_path, lattice, gamma):
             assert filecmp.cmp(placed / name, other / name, shallow=False)
 
 
-def test_a_process_writes_a_sample_once():
+def test_a_process_writes_a_sample_once(tmp_path):
     cache = SampleBodies()
+    log = tmp_path / "log.lammps"
     scenes = [build_scene(SceneSpec(gamma_deg=g, **SMALL)) for g in (15.0, 70.0)]
-    first, second = (cache.path(s, "harmonic/quartic") for s in scenes)
-    assert first == second and first.is_file()
+    first, second = (cache.path(s, "harmonic/quartic", tmp_path, log) for s in scenes)
+    assert first == second and first.is_file() and first.parent.parent == tmp_path / BODIES_FOLDER
     other = build_scene(SceneSpec(gamma_deg=15.0, seed=2, **SMALL))
-    assert cache.path(other, "harmonic/quartic") != first
-    assert cache.path(scenes[0], "class2") != first  # another bond style, another file
+    assert cache.path(other, "harmonic/quartic", tmp_path, log) != first
+    assert cache.path(scenes[0], "class2", tmp_path, log) != first  # another bond style
+    assert "write_restart" in log.read_text()  # LAMMPS's log of the conversion
+
+
+def test_a_folder_lammps_cannot_read_is_refused_before_lammps_runs(tmp_path):
+    scene = build_scene(SceneSpec(gamma_deg=15.0, **SMALL))
+    with pytest.raises(InputError, match="whitespace|space"):
+        SampleBodies().path(scene, "harmonic/quartic", tmp_path / "a b", tmp_path / "log")
+
+
+def test_the_driver_removes_the_workers_bodies(tmp_path, monkeypatch):
+    """A study's run ends with no .bodies folder, whatever its workers left."""
+    from runner.driver import run_study
+    from runner.study import Study
+
+    monkeypatch.setenv("IMPACT_RUNS", str(tmp_path))
+    study = Study("bodies_probe", lattices=("random",), cot_gamma=(3.0, 1.0), angles=2,
+                  samples=1, n_disk=200)  # fmt: skip
+    (study.folder / BODIES_FOLDER / "elsewhere-1").mkdir(parents=True)  # a crashed worker's
+    counts = run_study(study, workers=1)
+    assert counts["done"] == 2 and not (study.folder / BODIES_FOLDER).exists()

@@ -59,8 +59,11 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
         ("[walls]\n", "'walls' is not a section"),
         ("[grid]\nsamples = [1, 2]\n", "[grid] samples must be one value"),
-        ("[scene]\nwall_ka = [1.0, 1.0]\n", "an axis needs distinct values"),
-        ("[scene]\nwall_ka = []\n", "an axis needs distinct values"),
+        ("[scene]\nwall_ka = [1.0, 1.0]\n", "an axis needs values distinct"),
+        ("[scene]\nwall_ka = [1, 1.0]\n", "distinct in their folder names \\(1, 1\\)"),
+        ("[scene]\nwall_ka = []\n", "an axis needs values distinct"),
+        ("[grid]\ngamma_deg = [0, 45]\n", "gamma_deg must be a number in \\(0, 90\\)"),
+        ('[grid]\ngamma_deg = ["a"]\n', "gamma_deg must be numbers"),
         ('[grid]\nlattices = "random"\n', "[grid] lattices must be a list"),
         ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
         ("[grid\n", "not a study file"),
@@ -160,3 +163,5 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
     assert found == [(1.0, 1.0), (1.0, 3.0), (10.0, 1.0), (10.0, 3.0)]
     proc = run_study_command(str(path), "--docs")
     assert proc.returncode == 2 and "has axes (wall_ka)" in proc.stderr
+    proc = run_study_command(str(path), "--wall-ka", "5")  # would run one wall twice
+    assert proc.returncode == 2 and "--wall-ka: wall_ka is an axis" in proc.stderr
