@@ -115,6 +115,11 @@ def run_scene(
             )
     data = scene_data(folder)
     if not data.is_file():
+        if ".bodies" in data.parts:  # runner.study.BODIES_FOLDER
+            raise InputError(
+                f"scene: {data}, its sample's bodies, was a study's scratch, removed when the "
+                "study's run ended: run the study again (--retry-failed for a failed impact)"
+            )
         raise InputError(f"scene: no data file {data} (write one with python -m builder scene)")
     scene = json.loads((folder / "scene.json").read_text())
     if scene.get("springs", "class2") != options.springs:
