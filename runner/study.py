@@ -343,11 +343,14 @@ class SampleBodies:
         for placement in ("gamma_deg", "vn", "contact_time_guess", "start_gap"):
             spec.pop(placement)
         key = json.dumps([spec, springs, str(study_folder)], sort_keys=True)
-        if key not in self.files:
+        # a run of the study that ended removed its workers' folders, also
+        # under a worker that a joined cluster keeps for the next run
+        if key not in self.files or not self.files[key].is_file():
             folder = study_folder / BODIES_FOLDER / f"{socket.gethostname()}-{os.getpid()}"
             if problem := word_problem(str(folder)):
                 raise InputError(f"the workers' folder for the bodies {problem}: {folder}")
             folder.mkdir(parents=True, exist_ok=True)
+            self.files.pop(key, None)
             if len(self.files) >= self.KEPT:
                 self.files.pop(next(iter(self.files))).unlink(missing_ok=True)
             self.written += 1

@@ -77,6 +77,8 @@ def test_a_process_writes_a_sample_once(tmp_path):
     assert cache.path(other, "harmonic/quartic", tmp_path, log) != first
     assert cache.path(scenes[0], "class2", tmp_path, log) != first  # another bond style
     assert "write_restart" in log.read_text()  # LAMMPS's log of the conversion
+    first.unlink()  # a study's run ended and removed it: written again
+    assert cache.path(scenes[0], "harmonic/quartic", tmp_path, log).is_file()
 
 
 def test_a_folder_lammps_cannot_read_is_refused_before_lammps_runs(tmp_path):
