@@ -91,6 +91,17 @@ def has_grazing_angles(rows: list[dict]) -> bool:
     return any(float(r["gamma_deg"]) > PAPER_LAST_ANGLE + 1e-6 for r in rows)
 
 
+def peak_cells(numbers: dict) -> tuple[str, str, str]:
+    """A lattice's peak as a table gives it: at tan gamma, in degrees, its e."""
+    if not np.isfinite(numbers["peak_tan_gamma"]):
+        return "none inside the range", "-", "-"
+    return (
+        pm(numbers["peak_tan_gamma"], numbers["peak_tan_gamma_error"], 2),
+        f"{np.degrees(np.arctan(numbers['peak_tan_gamma'])):.1f}",
+        pm(numbers["peak_e"], numbers["peak_e_error"]),
+    )
+
+
 def grazing_section(numbers: dict, figure_dir: str) -> list[str]:
     lines = [
         "## Grazing incidence: the peak of e and e > 1",
@@ -108,12 +119,7 @@ def grazing_section(numbers: dict, figure_dir: str) -> list[str]:
     ]
     for name, n in numbers.items():
         big = n["largest"]
-        if np.isfinite(n["peak_tan_gamma"]):
-            where = pm(n["peak_tan_gamma"], n["peak_tan_gamma_error"], 2)
-            degrees = f"{np.degrees(np.arctan(n['peak_tan_gamma'])):.1f}"
-            height = pm(n["peak_e"], n["peak_e_error"])
-        else:
-            where, degrees, height = "none inside the range", "-", "-"
+        where, degrees, height = peak_cells(n)
         lines.append(
             f"| {name} | {where} | {degrees} | {height} | {pm(big['e'], big['error'])} | "
             f"{big['gamma_deg']:g} | {big['z']:+.1f} | "
@@ -213,12 +219,7 @@ def readings_section(study: dict, readings: dict[str, tuple[dict, list[dict], li
     for name, (info, rows, failed) in readings.items():
         for lattice, n in grazing_numbers(rows, resamples).items():
             big = n["largest"]
-            if np.isfinite(n["peak_tan_gamma"]):
-                where = pm(n["peak_tan_gamma"], n["peak_tan_gamma_error"], 2)
-                degrees = f"{np.degrees(np.arctan(n['peak_tan_gamma'])):.1f}"
-                height = pm(n["peak_e"], n["peak_e_error"])
-            else:
-                where, degrees, height = "none inside the range", "-", "-"
+            where, degrees, height = peak_cells(n)
             mine = [r for r in rows if r["study_lattice"] == lattice]
             near = np.mean([float(r["side_clearance"]) < 1.0 for r in mine])
             label = name if len(info["lattices"]) == 1 else f"{name} ({lattice})"

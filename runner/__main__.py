@@ -240,7 +240,7 @@ def parser() -> OneLineParser:
 def study_argument(text: str) -> str:
     """A study file's name (studies/<name>.toml) or path: its study becomes
     one of runner.study.PRESETS under the file's name."""
-    from .study import AXES, DOC_PAGES, PRESETS, READINGS
+    from .study import PRESETS, register
     from .study_file import STUDIES, read_study_file, study_path
 
     try:
@@ -253,13 +253,7 @@ def study_argument(text: str) -> str:
         raise argparse.ArgumentTypeError(
             f"{path}: {own} has the name {path.stem!r} already; rename the file"
         )
-    PRESETS[path.stem] = described.study
-    if described.page:
-        DOC_PAGES[path.stem] = described.page
-    if described.axes:
-        AXES[path.stem] = described.axes
-    if described.readings:
-        READINGS[path.stem] = described.readings
+    register(path.stem, described)
     return path.stem
 
 

@@ -511,17 +511,24 @@ def load_presets() -> tuple[dict, dict, dict, dict]:
     have any; the readings their pages tabulate."""
     from .study_file import STUDIES, read_study_file
 
-    presets, pages, axes, readings = {}, {}, {}, {}
+    found = ({}, {}, {}, {})
     for path in sorted(STUDIES.glob("*.toml")):
-        described = read_study_file(path)
-        presets[path.stem] = described.study
-        if described.page:
-            pages[path.stem] = described.page
-        if described.axes:
-            axes[path.stem] = described.axes
-        if described.readings:
-            readings[path.stem] = described.readings
-    return presets, pages, axes, readings
+        register(path.stem, read_study_file(path), *found)
+    return found
+
+
+def register(name: str, described, presets=None, pages=None, axes=None, readings=None) -> None:
+    """A study file's study under ``name`` in the registries (by default this
+    module's PRESETS, DOC_PAGES, AXES, READINGS)."""
+    presets = PRESETS if presets is None else presets
+    presets[name] = described.study
+    for registry, value in (
+        (DOC_PAGES if pages is None else pages, described.page),
+        (AXES if axes is None else axes, described.axes),
+        (READINGS if readings is None else readings, described.readings),
+    ):
+        if value:
+            registry[name] = value
 
 
 # The studies of studies/*.toml (paper, demo, speed, grazing, ...), the pages

@@ -72,25 +72,6 @@ def test_motion_2d_is_the_group_functions(small_scene_dir):
     assert abs(motion[4]) > 1.0 and abs(motion[6]) > 1e-3  # it does spin
 
 
-def test_motion_2d_refuses_3d(tmp_path):
-    """One line naming what it needs, a non-zero exit (lmp in a child: Debian's
-    LAMMPS has no C++ exceptions)."""
-    deck = tmp_path / "in.motion"
-    deck.write_text(
-        "units lj\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
-        "include decks/impact_2d.lmp\ncompute motion all motion/2d\nrun 0\n"
-    )
-    proc = subprocess.run(
-        ["lmp", "-in", str(deck), "-log", "none"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        env=mpi_environment(),
-    )
-    assert proc.returncode != 0
-    assert "ERROR: Compute motion/2d requires dimension 2" in proc.stdout
-
-
 @pytest.mark.parametrize("integrator", ["verlet", "respa"])
 def test_nve_2d_is_fix_nve_bit_for_bit(small_scene_dir, tmp_path, integrator):
     """The same impact with LAMMPS's fix nve and with fix nve/2d: every row of
@@ -108,11 +89,20 @@ def test_nve_2d_is_fix_nve_bit_for_bit(small_scene_dir, tmp_path, integrator):
     assert len((outputs[0] / "series.dat").read_text().splitlines()) > 100  # it ran
 
 
-def test_nve_2d_refuses_3d(tmp_path):
-    deck = tmp_path / "in.nve"
+@pytest.mark.parametrize(
+    ("command", "message"),
+    [
+        ("compute motion all motion/2d", "Compute motion/2d requires dimension 2"),
+        ("fix move all nve/2d", "Fix nve/2d requires dimension 2"),
+    ],
+)
+def test_a_2d_style_refuses_3d(tmp_path, command, message):
+    """One line naming what it needs, a non-zero exit (lmp in a child: Debian's
+    LAMMPS has no C++ exceptions)."""
+    deck = tmp_path / "in.3d"
     deck.write_text(
         "units lj\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
-        "include decks/impact_2d.lmp\nfix move all nve/2d\n"
+        f"include decks/impact_2d.lmp\n{command}\nrun 0\n"
     )
     proc = subprocess.run(
         ["lmp", "-in", str(deck), "-log", "none"],
@@ -122,4 +112,4 @@ def test_nve_2d_refuses_3d(tmp_path):
         env=mpi_environment(),
     )
     assert proc.returncode != 0
-    assert "ERROR: Fix nve/2d requires dimension 2" in proc.stdout
+    assert f"ERROR: {message}" in proc.stdout
