@@ -17,6 +17,7 @@ from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
 from .result import FINITE, MAX_DRIFT
 from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
+    SECTIONS,
     drift_section,
     failure_cause,
     failure_causes,
@@ -144,10 +145,14 @@ def results_page(
     samples_done: int,
     preset: str = "paper",
     tables: str = "",
-    extra: list[str] = (),
+    extra: dict[str, list[str]] | None = None,
+    sections: tuple[str, ...] | None = None,
 ) -> str:
-    """The results page (markdown) of a study from its tables and estimates;
-    ``extra``: sections before the figures (the grazing section)."""
+    """The results page (markdown) of a study from its tables and estimates.
+
+    ``extra``: sections made beforehand, by name (grazing, readings);
+    ``sections``: which of ``SECTIONS`` the page has, in order (default:
+    all; one that has nothing to say is left out either way)."""
     where_tables = tables_where(tables, preset)
     drifted = sum(str(r["drift_exceeded"]) == "True" for r in rows)
     drift_note = f"; {drifted} drifted above the energy threshold (below)" if drifted else ""
@@ -173,14 +178,19 @@ def results_page(
         "with their errors), `failed.csv`. "
         f"Made by `{made_by(study, preset)}`.",
         "",
-        *earlier_runs_section(preset),
-        *statistics_section(fits),
-        *claims_section(fits),
-        *fits_section(fits),
-        *measures_section(fits, figure_dir),
-        *nu_section(fits, study, rows, means),
-        *wall_end_section(means, study.get("wall_width", 8.0)),
-        *extra,
+    ]
+    made = {
+        "earlier_runs": lambda: earlier_runs_section(preset),
+        "statistics": lambda: statistics_section(fits),
+        "claims": lambda: claims_section(fits),
+        "fits": lambda: fits_section(fits),
+        "measures": lambda: measures_section(fits, figure_dir),
+        "nu": lambda: nu_section(fits, study, rows, means),
+        "wall_ends": lambda: wall_end_section(means, study.get("wall_width", 8.0)),
+    }
+    for name in sections or SECTIONS:
+        lines += made[name]() if name in made else (extra or {}).get(name, [])
+    lines += [
         "## Figures",
         "",
         "Error bars: the seed-bootstrap errors of the per-angle means. Solid lines: the "
@@ -222,6 +232,7 @@ def report(
     preset: str = "paper",
     tables: Path | None = None,
     readings: dict[str, Path] | None = None,
+    sections: tuple[str, ...] | None = None,
 ) -> dict:
     """Write impacts.csv, means.csv, fits.json, failed.csv, figures/ and results.md for a study.
 
@@ -242,6 +253,8 @@ def report(
     readings : dict of str to pathlib.Path, optional
         Table folders of the same study under other options, by name, which a
         grazing page tabulates (``grazing.readings_section``).
+    sections : tuple of str, optional
+        Which of ``SECTIONS`` the results page has, in order (default: all).
 
     Returns
     -------
@@ -263,6 +276,7 @@ def report(
         preset,
         shown_path(tables) if tables is not None else "",
         readings,
+        sections,
     )
     if tables is not None:
         tables.mkdir(parents=True, exist_ok=True)
@@ -280,6 +294,7 @@ def report_from_tables(
     preset: str = "paper",
     out: Path | None = None,
     readings: dict[str, Path] | None = None,
+    sections: tuple[str, ...] | None = None,
 ) -> dict:
     """The page and figures of a study from its tables alone (docs/results/).
 
@@ -290,7 +305,7 @@ def report_from_tables(
         ``tables``); read only, unless it is ``out``.
     page : pathlib.Path
         Where the page goes; the figures go into ``figures/`` beside it.
-    resamples, preset, readings
+    resamples, preset, readings, sections
         As for ``report``.
     out : pathlib.Path, optional
         Where the tables (with means.csv and fits.json made again) and
@@ -317,6 +332,7 @@ def report_from_tables(
         preset,
         shown_path(tables),
         readings,
+        sections,
     )
 
 
@@ -375,6 +391,7 @@ def render(
     preset: str,
     tables: str = "",
     readings: dict[str, Path] | None = None,
+    sections: tuple[str, ...] | None = None,
 ) -> dict:
     """Tables into ``out``, the figures and the page (see ``report``)."""
     rows = sorted(
@@ -395,13 +412,13 @@ def render(
     means = mean_rows(rows, errors)
     figure_dir = figure_folder(page, out)
     shown_figures = figure_dir.relative_to(page.parent).as_posix()
-    extra = []
+    extra = {}
     if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
         fits["grazing"] = grazing.grazing_numbers(rows, resamples)
         grazing.draw(fits["grazing"], figure_dir)
-        extra = grazing.grazing_section(fits["grazing"], shown_figures)
+        extra["grazing"] = grazing.grazing_section(fits["grazing"], shown_figures)
         others = {name: read_tables(folder) for name, folder in (readings or {}).items()}
-        extra += grazing.readings_section(info, others, resamples)
+        extra["readings"] = grazing.readings_section(info, others, resamples)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     seconds = sum(float(r["wall_seconds"]) for r in rows)
@@ -424,6 +441,7 @@ def render(
             preset,
             tables,
             extra,
+            sections,
         )
     )
     return summary(rows, failed, fits, page)

@@ -7,6 +7,20 @@ from __future__ import annotations
 import re
 from collections import Counter
 
+# The sections a results page may have, in the order it has them
+# (analysis.report.results_page; a study file's `sections` picks some).
+SECTIONS = (
+    "earlier_runs",
+    "statistics",
+    "claims",
+    "fits",
+    "measures",
+    "nu",
+    "wall_ends",
+    "grazing",
+    "readings",
+)
+
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
 
 

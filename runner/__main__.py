@@ -683,10 +683,16 @@ def remake_tabulating_page(preset: str, readings: dict[str, Path]) -> None:
     table of its readings."""
     from analysis.report import report_from_tables
 
-    from .study import DOC_PAGES, ROOT
+    from .study import DOC_PAGES, PAGE_SECTIONS, ROOT
 
     page = ROOT / "docs" / f"{DOC_PAGES[preset]}.md"
-    report_from_tables(page.with_suffix(""), page, preset=preset, readings=readings)
+    report_from_tables(
+        page.with_suffix(""),
+        page,
+        preset=preset,
+        readings=readings,
+        sections=PAGE_SECTIONS.get(preset),
+    )
     print(f"its row is on {shown(page)}")
 
 
@@ -694,7 +700,14 @@ def run_one_study(args) -> int:
     from analysis.report import report, report_from_tables
 
     from .driver import run_study
-    from .study import DOC_PAGES, READINGS, ROOT, record_wall_clock, study_from_args
+    from .study import (
+        DOC_PAGES,
+        PAGE_SECTIONS,
+        READINGS,
+        ROOT,
+        record_wall_clock,
+        study_from_args,
+    )
 
     docs = ROOT / "docs"
     refuse_idle_options(args)
@@ -734,7 +747,12 @@ def run_one_study(args) -> int:
                 "give another --name"
             )
         summary = report_from_tables(
-            args.from_tables, page, preset=args.preset, out=out, readings=readings
+            args.from_tables,
+            page,
+            preset=args.preset,
+            out=out,
+            readings=readings,
+            sections=PAGE_SECTIONS.get(args.preset),
         )
         print(
             f"{summary['rows']} impacts, {summary['failed']} failed; "
@@ -755,6 +773,7 @@ def run_one_study(args) -> int:
         preset=args.preset,
         tables=docs / doc_name if args.docs else None,
         readings=readings,
+        sections=PAGE_SECTIONS.get(args.preset),
     )
     if tabulated:
         readings[doc_name] = docs / doc_name

@@ -505,27 +505,30 @@ def cpu_name() -> str:
     return "unknown CPU"
 
 
-def load_presets() -> tuple[dict, dict, dict, dict]:
+def load_presets() -> tuple[dict, dict, dict, dict, dict]:
     """The study files in studies/ (runner/study_file.py): each study by its
     name; the page in docs/ of those that have one; the axes of those that
-    have any; the readings their pages tabulate."""
+    have any; the readings their pages tabulate; their pages' sections."""
     from .study_file import STUDIES, read_study_file
 
-    found = ({}, {}, {}, {})
+    found = ({}, {}, {}, {}, {})
     for path in sorted(STUDIES.glob("*.toml")):
         register(path.stem, read_study_file(path), *found)
     return found
 
 
-def register(name: str, described, presets=None, pages=None, axes=None, readings=None) -> None:
+def register(
+    name: str, described, presets=None, pages=None, axes=None, readings=None, sections=None
+) -> None:
     """A study file's study under ``name`` in the registries (by default this
-    module's PRESETS, DOC_PAGES, AXES, READINGS)."""
+    module's PRESETS, DOC_PAGES, AXES, READINGS, PAGE_SECTIONS)."""
     presets = PRESETS if presets is None else presets
     presets[name] = described.study
     for registry, value in (
         (DOC_PAGES if pages is None else pages, described.page),
         (AXES if axes is None else axes, described.axes),
         (READINGS if readings is None else readings, described.readings),
+        (PAGE_SECTIONS if sections is None else sections, described.sections),
     ):
         if value:
             registry[name] = value
@@ -534,8 +537,9 @@ def register(name: str, described, presets=None, pages=None, axes=None, readings
 # The studies of studies/*.toml (paper, demo, speed, grazing, ...), the pages
 # under docs/ of those that have one (written only with --docs), the axes of
 # those that run once per combination of some options' values, and the
-# readings (docs/<name>/ tables of the same study) that a page tabulates.
-PRESETS, DOC_PAGES, AXES, READINGS = load_presets()
+# readings (docs/<name>/ tables of the same study) that a page tabulates, and
+# the sections of the pages that do not have all (analysis.report.SECTIONS).
+PRESETS, DOC_PAGES, AXES, READINGS, PAGE_SECTIONS = load_presets()
 
 
 def state(job: dict) -> str:

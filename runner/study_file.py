@@ -4,6 +4,8 @@
     page = "results"                 # its page in docs/ (with --docs), if any
     readings = []                    # docs/<name>/ tables of the same study under
                                      # other readings, which the page tabulates
+    sections = [...]                 # what its page reports, in order (default:
+                                     # every one of analysis.sections.SECTIONS)
     [grid]
     lattices = ["random", "triangular", "square_nu0.1", "square_nu0.3"]
     angles = 16                      # or cot_gamma = [...] or gamma_deg = [...]
@@ -34,6 +36,7 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
+from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
 from builder.scene import ANGLE
 
@@ -75,6 +78,7 @@ class StudyFile:
     page: str = ""
     axes: dict = field(default_factory=dict)
     readings: tuple[str, ...] = ()
+    sections: tuple[str, ...] = ()  # of analysis.sections.SECTIONS; () for all
 
 
 def cot_of_degrees(degrees: float) -> float:
@@ -109,6 +113,11 @@ def read_study_file(path: Path) -> StudyFile:
         raise InputError(f"{path}: readings must be a list of names in docs/, got {readings!r}")
     if readings and not page:
         raise InputError(f"{path}: readings are tabulated on the study's page: give page")
+    sections = data.pop("sections", [])
+    if not isinstance(sections, list) or not all(name in PAGE_SECTIONS for name in sections):
+        raise InputError(
+            f"{path}: sections must be a list among {', '.join(PAGE_SECTIONS)}, got {sections!r}"
+        )
     unknown = set(data) - set(SECTIONS)
     if unknown:
         raise InputError(
@@ -167,7 +176,9 @@ def read_study_file(path: Path) -> StudyFile:
     except TypeError as error:
         raise InputError(f"{path}: {error}") from None
     axes = {key: values for (section, key), values in axes.items()}
-    return StudyFile(study, page, axes, tuple(readings))
+    if sections and study.speeds:
+        raise InputError(f"{path}: sections are a results page's; a study of speeds has its own")
+    return StudyFile(study, page, axes, tuple(readings), tuple(sections))
 
 
 def axis_word(value) -> str:
@@ -209,6 +220,8 @@ def study_file_text(described: StudyFile) -> str:
     lines = [f"page = {toml_value(page)}"] if page else []
     if described.readings:
         lines.append(f"readings = {toml_value(list(described.readings))}")
+    if described.sections:
+        lines.append(f"sections = {toml_value(list(described.sections))}")
     sections = {"grid": [], "scene": [], "run": []}
     for option in fields(Study):
         if option.name in ("name", "options"):

@@ -70,6 +70,8 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("page = 3\n", "page must be a name"),
         ('readings = ["x"]\n', "readings are tabulated on the study's page"),
         ('page = "p"\nreadings = "x"\n', "readings must be a list"),
+        ('sections = ["fits", "no-such-section"]\n', "sections must be a list among"),
+        ('sections = ["fits"]\n[grid]\nspeeds = [0.1, 0.2]\n', "a study of speeds has its own"),
     ],
 )
 def test_a_bad_file_is_refused_naming_it(tmp_path, text, message):
@@ -165,3 +167,17 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
     assert proc.returncode == 2 and "has axes (wall_ka)" in proc.stderr
     proc = run_study_command(str(path), "--wall-ka", "5")  # would run one wall twice
     assert proc.returncode == 2 and "--wall-ka: wall_ka is an axis" in proc.stderr
+
+
+def test_a_page_has_the_sections_its_file_names(tmp_path):
+    """sections = [...]: the page has those, in that order, and no other."""
+    from analysis.report import report_from_tables
+
+    path = tmp_path / "short.toml"
+    path.write_text('page = "short"\nsections = ["fits", "claims"]\n')
+    sections = read_study_file(path).sections
+    page = tmp_path / "short.md"
+    report_from_tables(ROOT / "docs" / "results", page, out=tmp_path / "t", sections=sections)
+    headings = [x for x in page.read_text().splitlines() if x.startswith("## ")]
+    assert headings[:2] == ["## Fits", "## The paper's claims"]
+    assert "## What the errors are" not in headings and "## Model-free measures" not in headings
