@@ -138,6 +138,9 @@ def variants(
     }
 
 
+RESPA_SPLITS = ("0.004/2", "0.01/5")
+
+
 def respa_split(text: str) -> tuple[float, int]:
     """--respa: OUTER/N, rRESPA's outer step (a dt) and contact steps per step (an nrespa)."""
     outer, slash, n = text.partition("/")
@@ -177,7 +180,7 @@ def parser() -> argparse.ArgumentParser:
         "--respa",
         type=respa_split,
         nargs="*",
-        default=["0.004/2", "0.01/5"],  # texts, so that argparse checks them
+        default=None,  # RESPA_SPLITS (argparse leaves a list default unconverted)
         help="rRESPA's splits, OUTER/N: the springs at OUTER, the contact at OUTER / N "
         f"(OUTER {DT.describe()}, N {NRESPA.describe()}; default: 0.004/2 0.01/5)",
     )
@@ -201,7 +204,8 @@ def main(argv: list[str] | None = None) -> int:
         steps = run_scene(folder, PRESETS["paper"].options)["steps"]
         old_setup = Path(tmp) / "setup_before.lmp"
         old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
-        chosen = variants(folder, steps, args.respa, old_setup, args.before)
+        splits = args.respa if args.respa is not None else [respa_split(t) for t in RESPA_SPLITS]
+        chosen = variants(folder, steps, splits, old_setup, args.before)
         runs: dict[str, list[dict]] = {}
         for repeat in range(args.repeats):
             for name, (deck, variables) in chosen.items():
@@ -273,7 +277,7 @@ def main(argv: list[str] | None = None) -> int:
     command = (
         f"python bench/loop_overhead.py --repeats {args.repeats} --gamma {args.gamma:g}"
         + (f" --seed {args.seed}" if args.seed != 1 else "")
-        + f" --respa {' '.join(f'{dt:g}/{n}' for dt, n in args.respa)}"
+        + f" --respa {' '.join(f'{dt:g}/{n}' for dt, n in splits)}"
         + f" --before {args.before}"
         + (" --docs" if args.docs else "")
     )
