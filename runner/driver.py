@@ -160,8 +160,15 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
         for future in finished:
             index = pending.pop(future)
             try:
-                outcomes = future.result()
+                # never without a timeout: a result held by a worker that has
+                # since ended (a cancelled batch job) is computed again, which
+                # needs a worker, which the next tick's replacement provides
+                outcomes = future.result(timeout=PROGRESS_EVERY)
+            except TimeoutError:
+                pending[future] = index  # still wanted: not released
+                continue
             except KilledWorker:  # a joined cluster gave the task up: its impacts decide
+                future.release()
                 resubmits[index] -= 1
                 if resubmits[index] < 0:
                     raise
@@ -169,8 +176,10 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
                 again = client.submit(group_task, study, groups[index], pure=False, key=key)
                 pending[again] = index
                 continue
-            finally:
-                future.release()  # a result no worker holds is not computed again
+            except BaseException:
+                future.release()
+                raise
+            future.release()  # a result no worker holds is not computed again
             for outcome in outcomes:
                 if outcome["state"] == "settled":
                     continue
