@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import os
-from collections import OrderedDict
 from pathlib import Path
 
 import numpy as np
@@ -28,36 +27,10 @@ SPRING_STYLES = ("harmonic/quartic", "class2", "harmonic")
 DEFAULT_SPRINGS = "harmonic/quartic"
 
 
-# The text of row chunks already formatted in this process, by their exact
-# content. The impacts of one (lattice, seed) differ only in the disk's
-# position, velocity and natural lengths: the wall's rows and every spring's
-# ends are formatted once, which is most of a data file (builder's time per
-# impact: docs/benchmarks.md).
-ROWS_PER_CHUNK = 256
-CHUNKS_KEPT = 512
-_chunk_text: OrderedDict[bytes, str] = OrderedDict()
-
-
-def _format_rows(columns: list[np.ndarray]) -> str:
-    lists = [c.tolist() for c in columns]
-    return "".join(" ".join(map(repr, row)) + "\n" for row in zip(*lists))
-
-
 def _rows(*columns: np.ndarray) -> str:
     """Lines of space-separated values; floats in shortest round-trip form."""
-    parts = []
-    for start in range(0, len(columns[0]), ROWS_PER_CHUNK):
-        chunk = [c[start : start + ROWS_PER_CHUNK] for c in columns]
-        key = b"|".join(c.dtype.str.encode() + c.tobytes() for c in chunk)
-        text = _chunk_text.get(key)
-        if text is None:
-            text = _chunk_text[key] = _format_rows(chunk)
-            if len(_chunk_text) > CHUNKS_KEPT:
-                _chunk_text.popitem(last=False)
-        else:
-            _chunk_text.move_to_end(key)
-        parts.append(text)
-    return "".join(parts)
+    lists = [c.tolist() for c in columns]
+    return "".join(" ".join(map(repr, row)) + "\n" for row in zip(*lists))
 
 
 def bond_coeff_columns(

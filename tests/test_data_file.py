@@ -105,22 +105,3 @@ def test_reference_reader_takes_both_spring_styles(small_scene, tmp_path):
     assert np.array_equal(harmonic.r0, quartic.r0) and np.array_equal(harmonic.k2, quartic.k2)
     assert np.array_equal(harmonic.bonds, quartic.bonds) and np.array_equal(harmonic.x, quartic.x)
     assert np.all(harmonic.k4 == 0) and np.all(quartic.k4 > 0)
-
-
-def test_rows_kept_from_earlier_scenes_give_the_same_bytes():
-    """The formatted rows a process keeps (the wall's, the springs' ends) make
-    each angle's data file exactly as if formatted afresh, though the disk
-    moves between angles and the chunks straddle wall and disk."""
-    from builder import lammps_data
-    from builder.scene import SceneSpec, build_scene
-
-    scenes = [build_scene(SceneSpec(n_disk=200, gamma_deg=g)) for g in (10.0, 45.0, 70.0)]
-    lammps_data._chunk_text.clear()
-    kept = [lammps_data.data_file_text(scene) for scene in scenes]
-    assert len(lammps_data._chunk_text) < 3 * len(kept[0].splitlines()) / 256  # shared chunks
-    afresh = []
-    for scene in scenes:
-        lammps_data._chunk_text.clear()
-        afresh.append(lammps_data.data_file_text(scene))
-    assert kept == afresh
-    assert kept[0] != kept[1]  # the disk's rows differ
