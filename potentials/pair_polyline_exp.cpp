@@ -30,6 +30,11 @@
    weights (1-t) and t for q = w1 + t (w2 - w1); at a vertex it all goes to
    the vertex. By the envelope theorem this is also the exact gradient of E,
    which the "gradient" rule computes independently (for checks).
+
+   "closed yes" makes the polyline a ring around its body (the last vertex
+   joins the first, counter-clockwise, the body on its left); "partner f l"
+   adds a second ring, and each ring's vertices are then the points that the
+   other ring repels: two rough disks in contact (docs/model.md).
 ------------------------------------------------------------------------- */
 
 #include "pair_polyline_exp.h"
@@ -72,7 +77,9 @@ PairPolylineExp::PairPolylineExp(LAMMPS *lmp) : Pair(lmp), active(nullptr)
   no_virial_fdotr_compute = 1;
 
   a = v0 = cut = reach = 0.0;
-  first = last = 0;
+  lo[0] = hi[0] = lo[1] = hi[1] = 0;
+  npolylines = 1;
+  closed = 0;
   rule = LEVER;
 }
 
@@ -111,6 +118,8 @@ void PairPolylineExp::compute(int eflag, int vflag)
     const int itype = type[i];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
+    const int k = target(i);
+    const tagint first = lo[k], last = hi[k];
 
     // closest feature of the polyline within the cutoff, as the segment
     // (w1,w2) and the parameter t of the foot of the perpendicular on it;
@@ -134,7 +143,7 @@ void PairPolylineExp::compute(int eflag, int vflag)
                    "(tags {}..{})",
                    tag[j], first, last);
 
-      const int ends[2][2] = {{vertex(tag[j] - 1, i), j}, {j, vertex(tag[j] + 1, i)}};
+      const int ends[2][2] = {{vertex(tag[j] - 1, i, k), j}, {j, vertex(tag[j] + 1, i, k)}};
       for (int s = 0; s < 2; s++) {
         const int ja = ends[s][0], jb = ends[s][1];
         if (ja < 0 || jb < 0) continue;
@@ -172,7 +181,13 @@ void PairPolylineExp::compute(int eflag, int vflag)
     if (w1 < 0) continue;
 
     const double l = sqrt(best);
-    if (l == 0.0 || crossings % 2)
+    if (closed) {
+      if (l == 0.0 || inside_ring(i, w1, w2, t, k))
+        error->one(FLERR,
+                   "Pair polyline/exp: atom {} is inside the ring {}..{} at step {} "
+                   "({} from its surface, near vertex {})",
+                   tag[i], first, last, update->ntimestep, l, tag[w1]);
+    } else if (l == 0.0 || crossings % 2)
       error->one(FLERR,
                  "Pair polyline/exp: atom {} is inside the wall at step {} "
                  "({} from the surface, near vertex {})",
@@ -244,13 +259,31 @@ void PairPolylineExp::compute(int eflag, int vflag)
 }
 
 /* ----------------------------------------------------------------------
-   local index of the polyline vertex with tag t, the image closest to atom i;
-   -1 past either end of the polyline
+   the polyline that acts on point i: the only one, or the other ring
 ------------------------------------------------------------------------- */
 
-int PairPolylineExp::vertex(tagint t, int i)
+int PairPolylineExp::target(int i)
 {
-  if (t < first || t > last) return -1;
+  if (npolylines == 1) return 0;
+  const tagint t = atom->tag[i];
+  if (t >= lo[0] && t <= hi[0]) return 1;
+  if (t >= lo[1] && t <= hi[1]) return 0;
+  error->one(FLERR, "Pair polyline/exp: atom {} has a point type but is on neither ring", t);
+  return -1;
+}
+
+/* ----------------------------------------------------------------------
+   local index of polyline k's vertex with tag t, the image closest to atom
+   i; -1 past either end of an open polyline, the other end for a ring
+------------------------------------------------------------------------- */
+
+int PairPolylineExp::vertex(tagint t, int i, int k)
+{
+  if (closed) {
+    if (t < lo[k]) t = hi[k];
+    if (t > hi[k]) t = lo[k];
+  } else if (t < lo[k] || t > hi[k])
+    return -1;
   const int m = atom->map(t);
   if (m < 0)
     error->one(FLERR,
@@ -258,6 +291,34 @@ int PairPolylineExp::vertex(tagint t, int i)
                "raise comm_modify cutoff to at least cutoff + 2 reach = {}",
                t, cut + 2.0 * reach);
   return domain->closest_image(i, m);
+}
+
+/* ----------------------------------------------------------------------
+   whether point i lies inside ring k, whose closest point to it is
+   w1 + t (w2 - w1): left of the segment there (the body is on the ring's
+   left), or at a vertex within the angle the two segments make on the
+   body's side. The segment to the closest point does not cross the ring,
+   so the point is on the side the ring has there.
+------------------------------------------------------------------------- */
+
+bool PairPolylineExp::inside_ring(int i, int w1, int w2, double t, int k)
+{
+  double **x = atom->x;
+  if (t > 0.0 && t < 1.0)
+    return (x[w2][0] - x[w1][0]) * (x[i][1] - x[w1][1]) -
+        (x[w2][1] - x[w1][1]) * (x[i][0] - x[w1][0]) >
+        0.0;
+
+  const int v = (t <= 0.0) ? w1 : w2;
+  const int prev = (t <= 0.0) ? vertex(atom->tag[w1] - 1, i, k) : w1;
+  const int next = (t <= 0.0) ? w2 : vertex(atom->tag[w2] + 1, i, k);
+  const double in[2] = {x[v][0] - x[prev][0], x[v][1] - x[prev][1]};
+  const double out[2] = {x[next][0] - x[v][0], x[next][1] - x[v][1]};
+  const double d[2] = {x[i][0] - x[v][0], x[i][1] - x[v][1]};
+  const bool left_in = in[0] * d[1] - in[1] * d[0] > 0.0;
+  const bool left_out = out[0] * d[1] - out[1] * d[0] > 0.0;
+  if (in[0] * out[1] - in[1] * out[0] >= 0.0) return left_in && left_out;    // convex
+  return left_in || left_out;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -275,6 +336,7 @@ void PairPolylineExp::allocate()
 
 /* ----------------------------------------------------------------------
    pair_style polyline/exp a V0 cutoff first last [reach L] [rule lever|gradient]
+                           [closed yes|no] [partner first2 last2]
 ------------------------------------------------------------------------- */
 
 void PairPolylineExp::settings(int narg, char **arg)
@@ -282,15 +344,18 @@ void PairPolylineExp::settings(int narg, char **arg)
   if (narg < 5)
     error->all(FLERR,
                "Illegal pair_style polyline/exp command: expected "
-               "a V0 cutoff first last [reach L] [rule lever|gradient]");
+               "a V0 cutoff first last [reach L] [rule lever|gradient] [closed yes|no] "
+               "[partner first2 last2]");
 
   a = utils::numeric(FLERR, arg[0], false, lmp);
   v0 = utils::numeric(FLERR, arg[1], false, lmp);
   cut = utils::numeric(FLERR, arg[2], false, lmp);
-  first = utils::tnumeric(FLERR, arg[3], false, lmp);
-  last = utils::tnumeric(FLERR, arg[4], false, lmp);
+  lo[0] = utils::tnumeric(FLERR, arg[3], false, lmp);
+  hi[0] = utils::tnumeric(FLERR, arg[4], false, lmp);
   reach = 3.0 * cut;
   rule = LEVER;
+  npolylines = 1;
+  closed = 0;
 
   int iarg = 5;
   while (iarg < narg) {
@@ -310,26 +375,51 @@ void PairPolylineExp::settings(int narg, char **arg)
       else
         error->all(FLERR, "Pair polyline/exp: rule must be lever or gradient, got {}",
                    arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "closed") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal pair_style polyline/exp closed command: missing argument(s)");
+      // utils::logical() came after the 29 Sep 2021 release (Debian's LAMMPS)
+      if (strcmp(arg[iarg + 1], "yes") == 0)
+        closed = 1;
+      else if (strcmp(arg[iarg + 1], "no") == 0)
+        closed = 0;
+      else
+        error->all(FLERR, "Pair polyline/exp: closed must be yes or no, got {}", arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "partner") == 0) {
+      if (iarg + 3 > narg)
+        error->all(FLERR, "Illegal pair_style polyline/exp partner command: missing argument(s)");
+      lo[1] = utils::tnumeric(FLERR, arg[iarg + 1], false, lmp);
+      hi[1] = utils::tnumeric(FLERR, arg[iarg + 2], false, lmp);
+      npolylines = 2;
+      iarg++;
     } else {
       error->all(FLERR,
-                 "Pair polyline/exp: unknown keyword {} (allowed: reach L, rule lever|gradient)",
+                 "Pair polyline/exp: unknown keyword {} (allowed: reach L, rule lever|gradient, "
+                 "closed yes|no, partner first2 last2)",
                  arg[iarg]);
     }
     iarg += 2;
   }
+  if (npolylines == 2 && !closed)
+    error->all(FLERR, "Pair polyline/exp: partner needs closed rings (closed yes)");
 
   if (a <= 0.0) error->all(FLERR, "Pair polyline/exp: a must be > 0, got {}", a);
   if (v0 <= 0.0) error->all(FLERR, "Pair polyline/exp: V0 must be > 0, got {}", v0);
   if (cut <= 0.0) error->all(FLERR, "Pair polyline/exp: cutoff must be > 0, got {}", cut);
   if (reach <= 0.0) error->all(FLERR, "Pair polyline/exp: reach must be > 0, got {}", reach);
-  if (first < 1 || last <= first)
-    error->all(FLERR, "Pair polyline/exp: need 1 <= first < last, got first {} last {}", first,
-               last);
+  for (int k = 0; k < npolylines; k++)
+    if (lo[k] < 1 || hi[k] < lo[k] + (closed ? 2 : 1))
+      error->all(FLERR, "Pair polyline/exp: need 1 <= first < last{}, got first {} last {}",
+                 closed ? " and 3 vertices to a ring" : "", lo[k], hi[k]);
+  if (npolylines == 2 && lo[1] <= hi[0] && lo[0] <= hi[1])
+    error->all(FLERR, "Pair polyline/exp: the rings {}..{} and {}..{} overlap", lo[0], hi[0],
+               lo[1], hi[1]);
 }
 
 /* ----------------------------------------------------------------------
    pair_coeff I J: points of types I are repelled by the polyline, whose
-   vertices have types J; every other type pair interacts with nothing
+   vertices have types J (with partner, and the other way round); every
+   other type pair interacts with nothing
 ------------------------------------------------------------------------- */
 
 void PairPolylineExp::coeff(int narg, char **arg)
@@ -343,8 +433,12 @@ void PairPolylineExp::coeff(int narg, char **arg)
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  // two rings act on each other: the types of either are points and vertices
   for (int i = ilo; i <= ihi; i++)
-    for (int j = jlo; j <= jhi; j++) active[i][j] = 1;
+    for (int j = jlo; j <= jhi; j++) {
+      active[i][j] = 1;
+      if (npolylines == 2) active[j][i] = 1;
+    }
 
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) setflag[i][j] = 1;

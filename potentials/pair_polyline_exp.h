@@ -46,16 +46,21 @@ class PairPolylineExp : public Pair {
   double a;        // decay rate of the repulsion, 1/length
   double v0;       // energy scale: E(l) = v0 exp(-a l)
   double cut;      // contact cutoff on the distance l to the polyline
-  double reach;    // longest segment of the polyline
-  tagint first;    // tags first..last are the polyline's vertices, in order
-  tagint last;
-  int rule;        // LEVER or GRADIENT
-  int **active;    // active[itype][jtype]: points of itype feel vertices of jtype
+  double reach;       // longest segment of the polyline
+  tagint lo[2];       // tags lo[k]..hi[k] are polyline k's vertices, in order
+  tagint hi[2];
+  int npolylines;     // 1: the polyline acts on points; 2 (partner): each ring
+                      //    acts on the other's vertices as points
+  int closed;         // the polylines are closed rings around their bodies
+  int rule;           // LEVER or GRADIENT
+  int **active;       // active[itype][jtype]: points of itype feel vertices of jtype
 
   std::vector<tagint> seen;    // segments already examined for the current point
 
   void allocate();
-  int vertex(tagint, int);
+  int target(int);
+  int vertex(tagint, int, int);
+  bool inside_ring(int, int, int, double, int);
 };
 
 }    // namespace LAMMPS_NS

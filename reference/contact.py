@@ -173,3 +173,54 @@ def _gradient_forces(points, vertices, k, t, a, energy):
         on_start[vertex] = np.where(corner == 0, -f, 0.0)
         on_end[vertex] = np.where(corner == 1, -f, 0.0)
     return on_point, on_start, on_end
+
+
+def ring_contact(
+    points: np.ndarray, ring: np.ndarray, a: float, v0: float, cutoff: float, rule: str = "lever"
+) -> ContactForces:
+    """Energy and forces of points repelled by a closed ring around a body.
+
+    The ring is the polyline through ``ring`` and back to its first vertex;
+    its body is the polygon inside, and a point inside it within the cutoff
+    raises InsideWall (every edge's crossing counts here, where LAMMPS, which
+    sees only nearby edges, asks the closest one).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        (n, 2) points (the other body's surface).
+    ring : numpy.ndarray
+        (m, 2) the ring's vertices, in order around it.
+    a, v0, cutoff, rule
+        As for ``polyline_contact``.
+
+    Returns
+    -------
+    ContactForces
+        The energy, the forces on the points and on the ring's vertices.
+    """
+    closed = polyline_contact(points, np.concatenate([ring, ring[:1]]), a, v0, cutoff, rule)
+    on_ring = closed.on_vertices[:-1].copy()
+    on_ring[0] += closed.on_vertices[-1]
+    return ContactForces(closed.energy, closed.on_points, on_ring)
+
+
+def two_ring_contact(
+    ring_a: np.ndarray, ring_b: np.ndarray, a: float, v0: float, cutoff: float, rule: str = "lever"
+) -> ContactForces:
+    """Two rough bodies in contact: each ring's vertices repelled by the other
+    ring, both directions at the same V0 (docs/model.md, "Two disks").
+
+    Returns
+    -------
+    ContactForces
+        The energy of both directions, the forces on ``ring_a`` (as
+        ``on_points``) and on ``ring_b`` (as ``on_vertices``).
+    """
+    a_on_b = ring_contact(ring_a, ring_b, a, v0, cutoff, rule)
+    b_on_a = ring_contact(ring_b, ring_a, a, v0, cutoff, rule)
+    return ContactForces(
+        a_on_b.energy + b_on_a.energy,
+        a_on_b.on_points + b_on_a.on_vertices,
+        a_on_b.on_vertices + b_on_a.on_points,
+    )
