@@ -25,7 +25,14 @@ from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
     tables_where,
     wall_end_section,
 )
-from .table import COLUMNS, MEAN_COLUMNS, collect, mean_rows, with_model_readings, write_csv
+from .table import (
+    MEAN_COLUMNS,
+    collect,
+    mean_rows,
+    table_columns,
+    with_model_readings,
+    write_csv,
+)
 
 
 def angle_span(rows: list[dict]) -> str:
@@ -403,7 +410,7 @@ def render(
             float(r["seed"]),
         ),
     )
-    write_csv(rows, out / "impacts.csv", COLUMNS)
+    write_csv(rows, out / "impacts.csv", table_columns(rows))
     write_csv(failed, out / "failed.csv", FAILED_COLUMNS)
     if info.get("speeds"):
         return render_speed(info, rows, failed, out, page, resamples, preset, tables)

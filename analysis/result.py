@@ -10,6 +10,7 @@ from pathlib import Path
 
 from builder.scene import MODEL_READINGS
 
+from .binary import binary_energy_split, binary_rebound, momentum_change
 from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
 from .series import read_energies, read_series
 
@@ -40,8 +41,19 @@ REQUIRED = (
 )
 
 
+# A binary scene's (target disk): no wall, so no side to come near; the
+# relative change of the total momenta instead.
+BINARY_REQUIRED = (
+    *(key for key in REQUIRED if key != "side_clearance"),
+    "target",
+    "momentum_change",
+    "angular_momentum_change",
+)
+
+
 # REQUIRED's numbers: a result with one of them not finite is not a result.
 FINITE = tuple(key for key in REQUIRED if key != "lattice")
+BINARY_FINITE = tuple(key for key in BINARY_REQUIRED if key not in ("lattice", "target"))
 
 
 class UnreadableResult(ValueError):
@@ -70,6 +82,8 @@ def analyse_run(folder: Path | str) -> dict:
     series = read_series(folder / "series.dat")
     energies = read_energies(folder / "energy.dat")
     radius = spec["radius"]
+    if scene.get("target") == "disk":
+        return binary_result(scene, run, series, energies)
     rebound = rebound_from_series(series, radius, tangential=spec["gamma_deg"] > 0.0)
     start, end = contact_window(series)
     result = {
@@ -78,25 +92,12 @@ def analyse_run(folder: Path | str) -> dict:
         "gamma_deg": spec["gamma_deg"],
         "cot_gamma": rebound.cot_gamma,
         "vn": spec["vn"],
-        "dt": run["options"]["dt"],
-        "integrator": run["options"]["integrator"],
-        # contact steps per step; before the respa of the contact's inner level
-        # (2026-11) respa meant the springs' inner level, and nrespa its steps
-        "nrespa": run["options"]["nrespa"] if run["options"]["integrator"] == "respa" else None,
-        "contact": run["options"]["contact"],
         "e": rebound.e,
         "beta": rebound.beta,
         "omega": rebound.omega,
         "contact_time": end - start,
         "touches": touches(series),
         "steps": int(series["step"][-1]),
-        "wall_seconds": run["wall_seconds"],
-        "lammps_version": run["lammps_version"],
-        "rule": run["options"]["rule"],
-        "springs": run["options"]["springs"],
-        "route": run["options"]["route"],
-        "nprocs": run["options"]["nprocs"],
-        "git_revision": run["git_revision"],
         "contact_start": start,
         "contact_end": end,
         "time_end": float(series["time"][-1]),
@@ -121,10 +122,81 @@ def analyse_run(folder: Path | str) -> dict:
         "vy_in": rebound.vy_in,
         "vx_out": rebound.vx_out,
         "vy_out": rebound.vy_out,
+        **run_provenance(run),
     }
     result.update(energy_split(series, energies, scene["disk_mass"]))
-    # results written before the option existed were judged by the default
-    result["max_drift"] = run["options"].get("max_drift", MAX_DRIFT)
+    result["drift_exceeded"] = bool(abs(result["energy_drift"]) > result["max_drift"])
+    return result
+
+
+def run_provenance(run: dict) -> dict:
+    """How a run was made: what every result records of run.json."""
+    options = run["options"]
+    return {
+        "dt": options["dt"],
+        "integrator": options["integrator"],
+        # contact steps per step; before the respa of the contact's inner level
+        # (2026-11) respa meant the springs' inner level, and nrespa its steps
+        "nrespa": options["nrespa"] if options["integrator"] == "respa" else None,
+        "contact": options["contact"],
+        "rule": options["rule"],
+        "springs": options["springs"],
+        "route": options["route"],
+        "nprocs": options["nprocs"],
+        "wall_seconds": run["wall_seconds"],
+        "lammps_version": run["lammps_version"],
+        "git_revision": run["git_revision"],
+        # results written before the option existed were judged by the default
+        "max_drift": options.get("max_drift", MAX_DRIFT),
+    }
+
+
+def binary_result(scene: dict, run: dict, series, energies) -> dict:
+    """The result of a binary run (builder/binary.py): e and beta at the
+    apse's normal (analysis.binary), the momenta's change, the energy split.
+    ``vibration_wall`` is the second disk's, so that a binary study's tables
+    have the columns of a wall study's (what the disk hit)."""
+    spec = scene["spec"]
+    masses = (scene["disk_mass"], scene["target_mass"])
+    rebound, where = binary_rebound(series, spec["radius"])
+    start, end = contact_window(series)
+    result = {
+        "target": "disk",
+        "lattice": spec["lattice"],
+        "partner_lattice": spec.get("partner_lattice") or spec["lattice"],
+        "seed": spec["seed"],
+        "partner_seed": spec.get("partner_seed"),
+        "gamma_deg": spec["gamma_deg"],
+        "cot_gamma": rebound.cot_gamma,
+        "cot_gamma_nominal": scene["cot_gamma"],
+        "vn": spec["vn"],
+        "vn_in_c": spec["vn"] * scene["units"].get("vn_unit", 1.0),
+        "e": rebound.e,
+        "beta": rebound.beta,
+        "omega": rebound.omega,
+        **where,
+        "contact_time": end - start,
+        "contact_start": start,
+        "contact_end": end,
+        "touches": touches(series),
+        "steps": int(series["step"][-1]),
+        "time_end": float(series["time"][-1]),
+        **{name: spec.get(name, choices[0]) for name, choices in MODEL_READINGS.items()},
+        "disk_inertia_ratio": scene["disk_inertia_ratio"],
+        "target_inertia_ratio": scene["target_inertia_ratio"],
+        "n_disk_points": scene["n_disk_points"],
+        "n_target_points": scene["n_target_points"],
+        "c_source": scene["units"]["c_source"],
+        "nu": scene["disk_material"]["nu"],
+        "vx_in": rebound.vx_in,
+        "vy_in": rebound.vy_in,
+        "vx_out": rebound.vx_out,
+        "vy_out": rebound.vy_out,
+        **run_provenance(run),
+    }
+    result.update(momentum_change(series, masses, spec["radius"]))
+    result.update(binary_energy_split(series, energies, masses))
+    result["vibration_wall"] = result["vibration_target"]
     result["drift_exceeded"] = bool(abs(result["energy_drift"]) > result["max_drift"])
     return result
 
@@ -138,13 +210,14 @@ def read_result(path: Path | str) -> dict:
         raise UnreadableResult(f"{path}: unreadable ({error})") from None
     if not isinstance(values, dict):
         raise UnreadableResult(f"{path}: not a JSON object")
-    missing = [key for key in REQUIRED if key not in values]
+    binary = values.get("target") == "disk"
+    missing = [key for key in (BINARY_REQUIRED if binary else REQUIRED) if key not in values]
     if missing:
         raise UnreadableResult(
             f"{path}: incomplete (no {', '.join(missing[:4])}{', ...' if len(missing) > 4 else ''})"
         )
     # a run that produced these cannot have been right (run_scene never writes them)
-    wrong = [key for key in FINITE if not _finite(values[key])]
+    wrong = [key for key in (BINARY_FINITE if binary else FINITE) if not _finite(values[key])]
     if wrong:
         raise UnreadableResult(f"{path}: not a result ({', '.join(wrong)} not a finite number)")
     return values

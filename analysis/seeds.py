@@ -91,7 +91,7 @@ def seed_tables(rows: list[dict], quantities=QUANTITIES) -> dict[str, SeedTable]
         for r in mine:
             i, j = seed_index[int(float(r["seed"]))], angle_index[float(r["gamma_deg"])]
             for q in quantities:
-                values[q][i, j] = float(r[q])
+                values[q][i, j] = float(r[q]) if r[q] != "" else np.nan  # binary: no side
         tables[lattice] = SeedTable(seeds, gammas, values)
     return tables
 

@@ -56,6 +56,26 @@ COLUMNS = (
     "lammps_version",
     "git_revision",
 )
+# A binary study's impacts.csv has these too (analysis.binary); its
+# vibration_wall is the second disk's, and side_clearance is empty (no wall).
+BINARY_COLUMNS = (
+    *COLUMNS,
+    "target",
+    "partner_lattice",
+    "cot_gamma_nominal",
+    "apse_angle_deg",
+    "momentum_change",
+    "angular_momentum_change",
+    "n_target_points",
+    "target_inertia_ratio",
+)
+
+
+def table_columns(rows: list[dict]) -> tuple[str, ...]:
+    """impacts.csv's columns for these rows: a binary study's has its own too."""
+    return BINARY_COLUMNS if any(r.get("target") == "disk" for r in rows) else COLUMNS
+
+
 # The columns of means.csv. "*_seed_sd": the error of the mean, the standard
 # deviation over resamples of whole seeds (analysis.seeds).
 # The quantities of impacts.csv averaged per lattice and angle (means.csv, and
@@ -129,7 +149,8 @@ def with_model_readings(values: dict) -> dict:
 def row(result: dict, study_lattice: str) -> dict:
     """The table's row for one result.json."""
     values = dict(result, study_lattice=study_lattice)
-    return {name: values.get(name, "") for name in COLUMNS}
+    columns = BINARY_COLUMNS if values.get("target") == "disk" else COLUMNS
+    return {name: "" if values.get(name) is None else values[name] for name in columns}
 
 
 def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
@@ -173,6 +194,8 @@ def collect(folders: list[tuple[str, Path]]) -> list[dict]:
                 )
                 continue
             scene_file = Path(folder) / "scene.json"
+            if values.get("target") == "disk":  # binary: no wall to fill in
+                scene_file = Path(folder) / "no wall"
             if "n_wall" not in values and scene_file.exists():  # results from before the readings
                 scene = json.loads(scene_file.read_text())
                 spec = scene["spec"]
@@ -215,7 +238,9 @@ def mean_rows(rows: list[dict], errors: dict | None = None) -> list[dict]:
         mean = {"study_lattice": lattice, "gamma_deg": gamma, "samples": len(group)}
         for name in AVERAGED:
             mean[name] = float(np.mean([float(r[name]) for r in group]))
-        mean["near_side"] = sum(float(r["side_clearance"]) < NEAR_SIDE for r in group)
+        mean["near_side"] = sum(
+            r["side_clearance"] != "" and float(r["side_clearance"]) < NEAR_SIDE for r in group
+        )
         mean.update((errors or {}).get((lattice, gamma), {}))
         out.append(mean)
     return out

@@ -143,6 +143,7 @@ def add_model_arguments(group, defaults: bool = True) -> None:
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
     from .bodies import LATTICES
+    from .scene import TARGETS
 
     group = parser.add_argument_group("scene")
     group.add_argument(
@@ -201,7 +202,28 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         f"{NU.describe()}; a scene needs the ratio calibrated (0.1 and 0.3 are; "
         "python -m calibration run --square K2_OVER_K1 adds one)",
     )
-    add_wall_arguments(group)
+    # no defaults here: a binary scene refuses a wall option given (spec_from_args)
+    add_wall_arguments(group, defaults=False)
+    group.add_argument(
+        "--target",
+        choices=TARGETS,
+        default="wall",
+        help="what the disk hits: the wall, or a second free disk, both moving so that the "
+        "centre of mass is at rest (default: wall; docs/model.md, 'Two disks')",
+    )
+    group.add_argument(
+        "--partner-lattice",
+        choices=LATTICES,
+        default=None,
+        help="--target disk: the second disk's lattice (default: the disk's)",
+    )
+    group.add_argument(
+        "--partner-seed",
+        type=SEED,
+        default=None,
+        help="--target disk: take sample N's disk as the second disk (default: a stream of "
+        "the sample's own seed, so that each sample pairs two independent disks)",
+    )
     group.add_argument(
         "--contact-a",
         type=CONTACT_A,
@@ -211,6 +233,14 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add_model_arguments(parser.add_argument_group("the readings of the model (MODEL.md section 8)"))
 
+
+# The wall's options by SceneSpec field (add_wall_arguments).
+WALL_ARGUMENTS = {
+    "n_wall": "--n-wall",
+    "wall_ka": "--wall-ka",
+    "wall_fixed": "--wall-fixed",
+    "wall_width": "--wall-width",
+}
 
 # SceneSpec's fields by the options that set them, for messages the user can act on.
 OPTIONS = {
@@ -225,6 +255,9 @@ OPTIONS = {
     "roughness": "--roughness",
     "radius": "--radius",
     "seed": "--seed",
+    "target": "--target",
+    "partner_lattice": "--partner-lattice",
+    "partner_seed": "--partner-seed",
     **{name: option for name, (option, _) in MODEL_OPTIONS.items()},
 }
 
@@ -253,6 +286,24 @@ def spec_from_args(args: argparse.Namespace):
             option = "--nu" if args.nu is not None else "--k2-over-k1"
             raise InputError(f"{option} applies to --lattice square only, got {args.lattice}")
         k2_over_k1 = square_ratio_for_poisson(args.nu) if args.nu is not None else args.k2_over_k1
+    wall = {name: getattr(args, name) for name in WALL_ARGUMENTS}
+    if args.target == "disk":
+        for name, value in wall.items():
+            if value is not None:
+                raise InputError(
+                    f"{WALL_ARGUMENTS[name]} applies to --target wall; a binary scene "
+                    "(--target disk) has no wall"
+                )
+    else:
+        for name, option in (
+            ("partner_lattice", "--partner-lattice"),
+            ("partner_seed", "--partner-seed"),
+        ):
+            if getattr(args, name) is not None:
+                raise InputError(f"{option} applies to --target disk, got --target {args.target}")
+    wall = {
+        name: getattr(SceneSpec, name) if value is None else value for name, value in wall.items()
+    }
     return SceneSpec(
         lattice=args.lattice,
         seed=args.seed,
@@ -260,12 +311,12 @@ def spec_from_args(args: argparse.Namespace):
         vn=args.vn,
         radius=args.radius,
         n_disk=args.n_disk,
-        n_wall=args.n_wall,
         roughness=args.roughness,
         k2_over_k1=k2_over_k1,
-        wall_ka=args.wall_ka,
-        wall_fixed=args.wall_fixed,
-        wall_width=args.wall_width,
+        **wall,
         contact_a=args.contact_a,
+        target=args.target,
+        partner_lattice=args.partner_lattice,
+        partner_seed=args.partner_seed,
         **{name: getattr(args, name) for name in MODEL_OPTIONS},
     )

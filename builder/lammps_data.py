@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from .contact_table import ensure_table, table_name
-from .scene import DISK, TYPE_NAMES, Scene
+from .scene import DISK, Scene
 
 # Decks run from the project's root and find the contact tables here: derived
 # files, made when first needed, so under build/ and not in the source tree.
@@ -111,7 +111,7 @@ def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS, placed: bool = 
         positions,
         velocities,
         scene.types,
-        TYPE_NAMES,
+        {int(k): v for k, v in scene.info["atom_types"].items()},
         scene.molecule,
         scene.springs,
         scene.ka,
@@ -167,6 +167,21 @@ def settings_text(
         f"variable disk_dy     index {float(shift[1])!r}\n"
         f"variable disk_vx     index {float(velocity[0])!r}\n"
         f"variable disk_vy     index {float(velocity[1])!r}\n"
+        + (binary_settings(scene) if info.get("target") == "disk" else "")
+    )
+
+
+def binary_settings(scene: Scene) -> str:
+    """What a binary scene adds to scene.lmp: the decks' branch, the
+    target's velocity, and the contact's two rings (pair_style polyline/exp's
+    partner: the target's ring is wall_first..wall_last)."""
+    velocity = scene.velocities[scene.molecule != DISK][0]
+    first, last = scene.info["partner_row_tags"]
+    return (
+        "variable target      index disk\n"
+        f"variable target_vx   index {float(velocity[0])!r}\n"
+        f"variable target_vy   index {float(velocity[1])!r}\n"
+        f'variable contact_keywords index "closed yes partner {first} {last}"\n'
     )
 
 

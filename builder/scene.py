@@ -76,6 +76,12 @@ KB_OVER_KA = Range(0.0, 1.0)
 WALL_HEIGHT = Range(0.5, 100.0, unit="R")
 
 
+# What a disk may hit (builder/binary.py builds the second disk), and the
+# wall's options, which a binary scene refuses rather than ignores.
+TARGETS = ("wall", "disk")
+WALL_OPTIONS = ("n_wall", "wall_ka", "wall_fixed", "wall_width", "wall_height")
+
+
 def speed_warning(vn: float, gamma_deg: float) -> str | None:
     """Why a run at (vn, gamma) may not resolve the contact, or None."""
     tangential = vn * math.tan(math.radians(gamma_deg))
@@ -140,6 +146,10 @@ class SceneSpec:
     regular_surface: str = "band"  # a regular disk's surface: a joined row, or its own points
     contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
     start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
+    # What the disk hits: the wall, or a second disk (builder/binary.py).
+    target: str = "wall"
+    partner_lattice: str | None = None  # the second disk's lattice; None: the disk's
+    partner_seed: int | None = None  # None: the sample's own third stream; N: sample N's disk
 
     def __post_init__(self) -> None:
         # Same spec, same files: 60 and 60.0 must not write different metadata.
@@ -211,6 +221,23 @@ class SceneSpec:
                 )
         Range(0.0, 1000.0).check("contact_time_guess", self.contact_time_guess)
         Range(0.0, 100.0, low_open=True).check("start_gap", self.start_gap)
+        require_choice("target", self.target, TARGETS)
+        if self.target == "wall":
+            for name in ("partner_lattice", "partner_seed"):
+                if getattr(self, name) is not None:
+                    raise InputError(
+                        f"{name} applies to target disk (a second disk), got target wall"
+                    )
+        else:
+            for name in WALL_OPTIONS:
+                if getattr(self, name) != getattr(SceneSpec, name):
+                    raise InputError(
+                        f"{name} applies to target wall; a binary scene (target disk) has no wall"
+                    )
+            if self.partner_lattice is not None:
+                require_choice("partner_lattice", self.partner_lattice, bodies.LATTICES)
+            if self.partner_seed is not None:
+                SEED.check("partner_seed", self.partner_seed)
 
     @property
     def wall_spacing(self) -> float:
@@ -359,10 +386,11 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
     )
 
 
-def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, np.random.SeedSequence]:
-    """Independent streams for the disk and the wall of one sample."""
-    disk_seed, wall_seed = np.random.SeedSequence(seed).spawn(2)
-    return disk_seed, wall_seed
+def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, ...]:
+    """Independent streams for the disk, the wall and the second disk of one
+    sample (a child's stream depends on its index only, so the disk and the
+    wall are those of the two streams this drew before the second disk)."""
+    return tuple(np.random.SeedSequence(seed).spawn(3))
 
 
 @lru_cache(maxsize=8)
@@ -433,6 +461,10 @@ def build_scene(spec: SceneSpec) -> Scene:
         If ``spec`` is invalid or its lattice is not calibrated.
     """
     spec.validate()
+    if spec.target == "disk":
+        from .binary import build_binary_scene  # it builds on this module
+
+        return build_binary_scene(spec)
     R = spec.radius
     disk, wall = build_bodies(spec)
 

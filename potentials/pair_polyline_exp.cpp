@@ -182,7 +182,7 @@ void PairPolylineExp::compute(int eflag, int vflag)
 
     const double l = sqrt(best);
     if (closed) {
-      if (l == 0.0 || inside_ring(i, w1, w2, t, k))
+      if (l == 0.0 || inside_ring(i, (t < 0.5) ? w1 : w2, k))
         error->one(FLERR,
                    "Pair polyline/exp: atom {} is inside the ring {}..{} at step {} "
                    "({} from its surface, near vertex {})",
@@ -280,8 +280,8 @@ int PairPolylineExp::target(int i)
 int PairPolylineExp::vertex(tagint t, int i, int k)
 {
   if (closed) {
-    if (t < lo[k]) t = hi[k];
-    if (t > hi[k]) t = lo[k];
+    if (t < lo[k]) t += hi[k] - lo[k] + 1;
+    if (t > hi[k]) t -= hi[k] - lo[k] + 1;
   } else if (t < lo[k] || t > hi[k])
     return -1;
   const int m = atom->map(t);
@@ -294,31 +294,40 @@ int PairPolylineExp::vertex(tagint t, int i, int k)
 }
 
 /* ----------------------------------------------------------------------
-   whether point i lies inside ring k, whose closest point to it is
-   w1 + t (w2 - w1): left of the segment there (the body is on the ring's
-   left), or at a vertex within the angle the two segments make on the
-   body's side. The segment to the closest point does not cross the ring,
-   so the point is on the side the ring has there.
+   whether point i lies inside ring k, whose closest vertex to it is w:
+   the parity of the crossings of the ray from the point along the ring's
+   outward direction there with the segments examined for the point (seen).
+   A rough surface folds under a sliding contact (a vertex pushed past its
+   neighbour), so the side of the closest feature does not tell inside from
+   outside; a fixed direction, as the wall's upward ray, would meet the
+   ring's far side, which the neighbour list does not hold. The outward
+   direction is the right normal of the chord from CHORD vertices before w
+   to as many after it (the ring runs counter-clockwise), which a fold of a
+   few vertices does not turn.
 ------------------------------------------------------------------------- */
 
-bool PairPolylineExp::inside_ring(int i, int w1, int w2, double t, int k)
+bool PairPolylineExp::inside_ring(int i, int w, int k)
 {
+  static constexpr int CHORD = 4;
   double **x = atom->x;
-  if (t > 0.0 && t < 1.0)
-    return (x[w2][0] - x[w1][0]) * (x[i][1] - x[w1][1]) -
-        (x[w2][1] - x[w1][1]) * (x[i][0] - x[w1][0]) >
-        0.0;
+  tagint *tag = atom->tag;
+  const int before = vertex(tag[w] - CHORD, i, k);
+  const int after = vertex(tag[w] + CHORD, i, k);
+  const double ux = x[after][1] - x[before][1];
+  const double uy = x[before][0] - x[after][0];
 
-  const int v = (t <= 0.0) ? w1 : w2;
-  const int prev = (t <= 0.0) ? vertex(atom->tag[w1] - 1, i, k) : w1;
-  const int next = (t <= 0.0) ? w2 : vertex(atom->tag[w2] + 1, i, k);
-  const double in[2] = {x[v][0] - x[prev][0], x[v][1] - x[prev][1]};
-  const double out[2] = {x[next][0] - x[v][0], x[next][1] - x[v][1]};
-  const double d[2] = {x[i][0] - x[v][0], x[i][1] - x[v][1]};
-  const bool left_in = in[0] * d[1] - in[1] * d[0] > 0.0;
-  const bool left_out = out[0] * d[1] - out[1] * d[0] > 0.0;
-  if (in[0] * out[1] - in[1] * out[0] >= 0.0) return left_in && left_out;    // convex
-  return left_in || left_out;
+  // positions relative to the point, as (across, along) the ray
+  int crossings = 0;
+  for (const tagint start : seen) {
+    const int ja = vertex(start, i, k), jb = vertex(start + 1, i, k);
+    const double ax = x[ja][0] - x[i][0], ay = x[ja][1] - x[i][1];
+    const double bx = x[jb][0] - x[i][0], by = x[jb][1] - x[i][1];
+    const double sa = ax * uy - ay * ux, sb = bx * uy - by * ux;
+    if ((sa <= 0.0) == (sb <= 0.0)) continue;    // half-open: a vertex on the ray counts once
+    const double ha = ax * ux + ay * uy, hb = bx * ux + by * uy;
+    if (ha + (0.0 - sa) * (hb - ha) / (sb - sa) > 0.0) crossings++;
+  }
+  return crossings % 2;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -60,7 +60,7 @@ class PairPolylineExp : public Pair {
   void allocate();
   int target(int);
   int vertex(tagint, int, int);
-  bool inside_ring(int, int, int, double, int);
+  bool inside_ring(int, int, int);
 };
 
 }    // namespace LAMMPS_NS

@@ -9,6 +9,7 @@ import sys
 import time
 from pathlib import Path
 
+from builder.bodies import LATTICES as BODY_LATTICES
 from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
@@ -19,7 +20,16 @@ from builder.cli import (
     validate_spec,
 )
 from builder.errors import BuildError, InputError
-from builder.scene import CONTACT_A, MODEL_READINGS, N_DISK, RADIUS, ROUGHNESS, VN, speed_warning
+from builder.scene import (
+    CONTACT_A,
+    MODEL_READINGS,
+    N_DISK,
+    RADIUS,
+    ROUGHNESS,
+    TARGETS,
+    VN,
+    speed_warning,
+)
 
 from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
 from .lammps_run import LammpsError
@@ -355,6 +365,18 @@ def add_study_arguments(study) -> None:
         "800) for finer disks)",
     )
     add_wall_arguments(scene, defaults=False)
+    scene.add_argument(
+        "--target",
+        choices=TARGETS,
+        default=None,
+        help="what the disk hits: the wall, or a second free disk (default: the study's, wall)",
+    )
+    scene.add_argument(
+        "--partner-lattice",
+        choices=BODY_LATTICES,
+        default=None,
+        help="--target disk: the second disk's lattice (default: the disk's)",
+    )
     add_model_arguments(scene, defaults=False)
     scene.add_argument(
         "--max-drift",
@@ -593,6 +615,8 @@ STUDY_OPTIONS = (
     "wall_fixed",
     "wall_width",
     *MODEL_READINGS,
+    "target",
+    "partner_lattice",
     "max_drift",
     "report_only",
 )
@@ -663,7 +687,7 @@ def run_study_command(args) -> int:
 
 def combine_tables(folders: list[Path], out: Path) -> Path:
     """The impacts.csv of several studies as one, in ``out``."""
-    from analysis.table import COLUMNS, write_csv
+    from analysis.table import table_columns, write_csv
 
     if (out / "study.json").exists():
         raise InputError(f"--name {out.name}: {out} holds a study; give another --name")
@@ -674,7 +698,7 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
                 rows += list(csv.DictReader(handle))
     require_out_folder("--name", out)
     out.mkdir(parents=True, exist_ok=True)
-    write_csv(rows, out / "impacts.csv", COLUMNS)
+    write_csv(rows, out / "impacts.csv", table_columns(rows))
     return out / "impacts.csv"
 
 

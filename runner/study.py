@@ -129,6 +129,10 @@ class Study:
     roughness_direction: str = SceneSpec.roughness_direction
     surface_row: str = SceneSpec.surface_row
     regular_surface: str = SceneSpec.regular_surface
+    # what the disk hits: the wall, or a second disk (builder/binary.py), of
+    # the disk's lattice unless partner_lattice names another
+    target: str = SceneSpec.target
+    partner_lattice: str | None = SceneSpec.partner_lattice
     options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
 
     @property
@@ -261,6 +265,8 @@ class Study:
             n_wall=self.n_wall,
             wall_ka=self.wall_ka,
             wall_fixed=self.wall_fixed,
+            target=self.target,
+            partner_lattice=self.partner_lattice,
             **LATTICES[job["lattice"]],
         )
 
@@ -283,7 +289,8 @@ class Study:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
         for job in jobs:
             set_aside_if_unreadable(job)
-            set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
+            if self.target == "wall":
+                set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
         return jobs
 
     def build(self, job: dict) -> Path:
@@ -412,6 +419,8 @@ def study_from_args(args) -> Study:
             "wall_ka",
             "wall_fixed",
             *MODEL_READINGS,
+            "target",
+            "partner_lattice",
         )
         if getattr(args, key) is not None
     }

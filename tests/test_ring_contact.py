@@ -164,3 +164,35 @@ def test_ring_keywords_are_checked(tmp_path, keywords, message):
     ring_a, ring_b = two_rings(1)
     with pytest.raises(RuntimeError, match=message):
         lammps_forces(tmp_path, ring_b, ring_a, extra=("-var", "keywords", keywords))
+
+
+def folded_ring() -> tuple[np.ndarray, np.ndarray]:
+    """A ring folded as a sliding contact folded one (seen in the binary
+    study: a vertex pushed past its neighbour, two segments crossing), and a
+    point outside it whose closest feature is the folded vertex."""
+    step = 2 * np.pi / N_RING
+    ring = np.stack([np.cos(np.arange(N_RING) * step), np.sin(np.arange(N_RING) * step)], axis=1)
+    top = N_RING // 4
+    ring[top - 1 : top + 3] = [[0.040, 0.995], [-0.0386, 1.0555], [0.018, 1.022], [-0.052, 1.054]]
+    return ring, np.array([[0.065, 1.070]])
+
+
+def test_a_folded_ring_does_not_take_a_point_outside_for_inside(tmp_path):
+    ring, point = folded_ring()
+    closed = np.vstack([ring, ring[:1]])
+    k, t, _ = closest_features(point, closed)
+    vertex = (k[0] + 1) % N_RING if t[0] >= 1.0 else k[0]
+    # the closest feature's side says inside: the fold (the ring's segments cross)
+    d = point[0] - ring[vertex]
+    e_in, e_out = ring[vertex] - ring[vertex - 1], ring[vertex + 1] - ring[vertex]
+    left = [a[0] * d[1] - a[1] * d[0] > 0 for a in (e_in, e_out)]
+    convex = e_in[0] * e_out[1] - e_in[1] * e_out[0] >= 0
+    assert (all(left) if convex else any(left)), "not the fold's case"
+    expected = ring_contact(point, ring, A, V0, CUTOFF)  # every edge's crossing: outside
+    energy, on_ring, on_point = lammps_forces(
+        tmp_path, ring, point, extra=("-var", "keywords", "closed yes")
+    )
+    assert expected.energy > 0
+    assert energy == pytest.approx(expected.energy, rel=1e-12)
+    assert relative(on_point, expected.on_points) < 1e-12
+    assert relative(on_ring, expected.on_vertices) < 1e-12

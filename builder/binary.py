@@ -1,0 +1,291 @@
+"""A binary scene: the disk hits a second disk, both free, centre of mass at rest.
+
+The second disk (the target) sits at the origin; the disk (the projectile)
+comes from above. The relative velocity of the centres, v_A - v_B, is
+(v_n tan gamma, -v_n), and the disks would first touch, were they rigid
+circles of radius R, with the line of their centres along +y: gamma is the
+angle of incidence at first touch. The total momentum is zero.
+
+Atom order and types: the target's surface ring first (tags 1..n, counter-
+clockwise: pair_style polyline/exp's ring), then its interior (types 3 and 4,
+molecule 2), then the disk's ring and interior (types 1 and 2, molecule 1),
+so that decks/setup.lmp's groups and exclusions serve both scenes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import bodies
+from .bodies import SURFACE, Body
+from .errors import InputError
+from .geometry import distance_to_polyline
+from .materials import spring_constant
+from .scene import (
+    DISK,
+    DISK_INTERIOR,
+    DISK_SURFACE,
+    WALL_FREE,
+    WALL_INTERIOR,
+    WALL_SURFACE,
+    Scene,
+    SceneSpec,
+    _disk,
+    _sample_seeds,
+    contact_energy,
+    on_grid,
+    placement_quantum,
+    require_contact_resolved,
+    speed_unit,
+)
+
+TARGET = WALL_FREE  # the target's molecule ID: decks/setup.lmp's group wall
+TYPE_NAMES = {
+    DISK_SURFACE: "disk surface",
+    DISK_INTERIOR: "disk interior",
+    WALL_SURFACE: "target disk surface",
+    WALL_INTERIOR: "target disk interior",
+    5: "unused (the wall's held points)",
+}
+
+
+def partner_body(spec: SceneSpec) -> Body:
+    """The second disk: its own stream of the sample's seed, or the disk of
+    sample ``partner_seed``; the disk's lattice unless ``partner_lattice``."""
+    lattice = spec.partner_lattice or spec.lattice
+    readings = (spec.roughness_direction, spec.surface_row, spec.regular_surface)
+    if spec.partner_seed is not None:
+        return _disk(
+            lattice, spec.partner_seed, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings
+        )
+    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
+
+
+def counter_clockwise(ring: np.ndarray) -> bool:
+    """Whether a closed ring runs counter-clockwise (positive shoelace area)."""
+    x, y = ring[:, 0], ring[:, 1]
+    return float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) > 0.0
+
+
+def gap_between(ring_a: np.ndarray, ring_b: np.ndarray) -> float:
+    """Least distance of either ring's points to the other closed ring."""
+    return float(
+        min(
+            distance_to_polyline(ring_a, ring_b, closed=True).min(),
+            distance_to_polyline(ring_b, ring_a, closed=True).min(),
+        )
+    )
+
+
+def place_projectile(
+    ring_a: np.ndarray, ring_b: np.ndarray, direction: np.ndarray, radius: float, gap: float
+) -> np.ndarray:
+    """Centre of the disk (ring ``ring_a`` about its centre) at ``gap`` from
+    the target (``ring_b`` about the origin), on the line along ``direction``
+    through (0, 2 R): one radius back along it, then forward by the gap that
+    is left, which no point can overshoot (sphere tracing)."""
+    centre = np.array([0.0, 2.0 * radius]) - direction * radius
+    for _ in range(10000):
+        excess = gap_between(ring_a + centre, ring_b) - gap
+        if excess < 1e-9 * gap:
+            if excess < -1e-9 * gap:
+                raise InputError("the disks overlap at the start: the roughness exceeds R / 2")
+            return centre
+        centre = centre + excess * direction
+    raise RuntimeError("the disk's placement did not converge")
+
+
+def build_binary_scene(spec: SceneSpec) -> Scene:
+    """Build, scale and place both disks of a binary scene (``target`` disk).
+
+    Parameters
+    ----------
+    spec : SceneSpec
+        The scene; validated by ``builder.scene.build_scene``.
+
+    Returns
+    -------
+    Scene
+        As ``builder.scene.build_scene``'s; ``info`` has ``target`` "disk" and
+        both disks' masses, moments of inertia and rings.
+    """
+    R = spec.radius
+    disk = _disk(
+        spec.lattice,
+        spec.seed,
+        spec.n_disk,
+        spec.roughness,
+        spec.k2_over_k1,
+        spec.roughness_direction,
+        spec.surface_row,
+        spec.regular_surface,
+    )
+    target = partner_body(spec)
+    partner_lattice = spec.partner_lattice or spec.lattice
+    ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
+    ka_target, target_material = spring_constant(
+        partner_lattice, target.spacing * R, spec.k2_over_k1
+    )
+    # The contact's range is the coarser disk's spacing, as the wall's is its
+    # own: the surface rows are then as fine as the range, both ways.
+    cutoff = max(disk.spacing, target.spacing) * R
+    require_contact_resolved(spec.contact_a, cutoff / R)
+
+    quantum = placement_quantum(R)
+    disk_points = on_grid(disk.points * R, quantum)
+    target_points = on_grid(target.points * R, quantum)
+    ring_a, ring_b = disk_points[disk.surface], target_points[target.surface]
+    for name, ring in (("disk", ring_a), ("target", ring_b)):
+        if not counter_clockwise(ring):  # pair_style polyline/exp's rings need it
+            raise RuntimeError(f"the {name}'s surface row does not run counter-clockwise")
+
+    speed = spec.vn * speed_unit(spec, disk.spacing * R, ka_disk)
+    if speed >= 1.0:
+        raise InputError(
+            f"vn must make the normal speed below c; vn {spec.vn:g} in units of the springs' "
+            f"sound speed is {speed:.3f} c"
+        )
+    gamma = np.radians(spec.gamma_deg)
+    relative = np.array([speed * np.tan(gamma), -speed])
+    centre = on_grid(
+        place_projectile(
+            ring_a, ring_b, relative / np.linalg.norm(relative), R, cutoff * (1 + spec.start_gap)
+        ),
+        quantum,
+    )
+    mass_a, mass_b = len(disk.points), len(target.points)
+    velocity_a = relative * mass_b / (mass_a + mass_b)
+    velocity_b = -relative * mass_a / (mass_a + mass_b)
+
+    disk_rest = np.setdiff1d(np.arange(len(disk.points)), disk.surface)
+    target_rest = np.setdiff1d(np.arange(len(target.points)), target.surface)
+    target_order = np.concatenate([target.surface, target_rest])
+    disk_order = np.concatenate([disk.surface, disk_rest])
+    n_target = len(target_order)
+
+    positions = np.concatenate([target_points[target_order], disk_points[disk_order] + centre])
+    velocities = np.concatenate(
+        [np.tile(velocity_b, (n_target, 1)), np.tile(velocity_a, (len(disk_order), 1))]
+    )
+    types = np.concatenate(
+        [
+            np.where(target.role == SURFACE, WALL_SURFACE, WALL_INTERIOR)[target_order],
+            np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order],
+        ]
+    )
+    molecule = np.concatenate([np.full(n_target, TARGET), np.full(len(disk_order), DISK)])
+
+    def renumber(springs, order, offset):
+        new_index = np.empty(len(order), int)
+        new_index[order] = np.arange(len(order)) + offset
+        return np.sort(new_index[springs], axis=1)
+
+    springs = np.concatenate(
+        [renumber(target.springs, target_order, 0), renumber(disk.springs, disk_order, n_target)]
+    )
+    ka = np.concatenate([ka_target * target.stiffness, ka_disk * disk.stiffness])
+    scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
+    n_ring_b, n_ring_a = len(target.surface), len(disk.surface)
+    scene.info = binary_info(
+        scene,
+        disk_material,
+        target_material,
+        ka_disk,
+        ka_target,
+        cutoff,
+        disk.spacing * R,
+        relative,
+        rings=((1, n_ring_b), (n_target + 1, n_target + n_ring_a)),
+    )
+    return scene
+
+
+def body_inertia(points: np.ndarray) -> tuple[float, np.ndarray]:
+    """Moment of inertia about the centre of mass (unit point masses), and that centre."""
+    com = points.mean(axis=0)
+    return float(((points - com) ** 2).sum()), com
+
+
+def longest_ring_segment(ring: np.ndarray) -> float:
+    return float(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1).max())
+
+
+def binary_info(
+    scene: Scene,
+    disk_material: dict,
+    target_material: dict,
+    ka_disk: float,
+    ka_target: float,
+    cutoff: float,
+    disk_spacing: float,
+    relative: np.ndarray,
+    rings: tuple[tuple[int, int], tuple[int, int]],
+) -> dict:
+    """Derived quantities of a binary scene that a run and its analysis need;
+    the wall scene's keys where they mean the same (``scene_info``)."""
+    from dataclasses import asdict
+
+    spec = scene.spec
+    R = spec.radius
+    in_disk = scene.molecule == DISK
+    inertia_a, com_a = body_inertia(scene.positions[in_disk])
+    inertia_b, com_b = body_inertia(scene.positions[~in_disk])
+    mass_a, mass_b = float(in_disk.sum()), float((~in_disk).sum())
+    (b_first, b_last), (a_first, a_last) = rings
+    longest = max(
+        longest_ring_segment(scene.positions[b_first - 1 : b_last]),
+        longest_ring_segment(scene.positions[a_first - 1 : a_last]),
+    )
+    lengths = scene.natural_lengths
+    return {
+        "spec": asdict(spec),
+        "target": "disk",
+        "units": {
+            "length": "R",
+            "velocity": "c",
+            "time": "R/c",
+            "mass": "m (one point)",
+            "R": R,
+            "c": 1.0,
+            "m": 1.0,
+            "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
+            f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
+            "vn_unit": speed_unit(spec, disk_spacing, ka_disk),
+        },
+        "disk_material": disk_material,
+        "target_material": target_material,
+        "n_atoms": int(len(scene.positions)),
+        "n_disk_points": int(mass_a),
+        "n_target_points": int(mass_b),
+        "n_springs": int(len(scene.springs)),
+        "atom_types": {str(k): v for k, v in TYPE_NAMES.items()},
+        # the target's ring is the pair style's polyline, the disk's its partner
+        "wall_row_tags": [b_first, b_last],
+        "partner_row_tags": [a_first, a_last],
+        "wall_longest_segment": longest,
+        "disk_spacing": float(disk_spacing),
+        "wall_spacing": float(cutoff),
+        "max_natural_length": float(lengths.max()),
+        "ka_disk": float(ka_disk),
+        "ka_target": float(ka_target),
+        "kb_over_ka": spec.kb_over_ka,
+        "contact": {
+            "a": float(spec.contact_a / R),
+            # both directions at the V0 of the disk's mass (docs/model.md, "Two disks")
+            "V0": float(contact_energy(spec, mass_a)),
+            "cutoff": float(cutoff),
+        },
+        "disk_mass": mass_a,
+        "target_mass": mass_b,
+        "disk_inertia": inertia_a,
+        "target_inertia": inertia_b,
+        "disk_inertia_ratio": float(inertia_a / (mass_a * R * R)),
+        "target_inertia_ratio": float(inertia_b / (mass_b * R * R)),
+        "initial_com": com_a.tolist(),
+        "target_initial_com": com_b.tolist(),
+        "initial_velocity": scene.velocities[in_disk][0].tolist(),
+        "target_initial_velocity": scene.velocities[~in_disk][0].tolist(),
+        "initial_relative_velocity": relative.tolist(),
+        "cot_gamma": float(abs(relative[1]) / relative[0]) if relative[0] > 0 else None,
+    }

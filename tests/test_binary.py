@@ -1,0 +1,244 @@
+"""Two disks colliding (target disk): the scene, its run by LAMMPS, its analysis."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from analysis.binary import apse, binary_rebound, momentum_change
+from analysis.series import BINARY_COLUMNS
+from builder.binary import counter_clockwise
+from builder.errors import InputError
+from builder.scene import DISK, SceneSpec, build_scene
+from runner.impact import run_impact
+from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
+from runner.study import Study
+from tests.helpers import ROOT
+
+BINARY = dict(target="disk", n_disk=200, gamma_deg=45.0)
+
+
+def rings(scene):
+    """The target's ring and the disk's, as the pair style reads them (tags)."""
+    (b_first, b_last), (a_first, a_last) = (
+        scene.info["wall_row_tags"],
+        scene.info["partner_row_tags"],
+    )
+    return scene.positions[b_first - 1 : b_last], scene.positions[a_first - 1 : a_last]
+
+
+@pytest.mark.parametrize("lattice", ["random", "triangular", "square"])
+def test_the_scene_is_at_rest_in_the_centre_of_mass_and_its_rings_run_counter_clockwise(lattice):
+    spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": 60.0, "seed": 3})
+    scene = build_scene(spec)
+    in_disk = scene.molecule == DISK
+    momentum = scene.velocities.sum(axis=0)  # unit masses
+    assert np.abs(momentum).max() < 1e-15 * np.abs(scene.velocities).sum()
+    relative = scene.velocities[in_disk][0] - scene.velocities[~in_disk][0]
+    assert relative == pytest.approx([0.1 * np.tan(np.radians(60.0)), -0.1], rel=1e-14)
+    ring_b, ring_a = rings(scene)
+    assert counter_clockwise(ring_a) and counter_clockwise(ring_b)
+    first, last = scene.info["partner_row_tags"]
+    assert set(scene.types[first - 1 : last]) == {1}
+    assert set(scene.types[: scene.info["wall_row_tags"][1]]) == {3}
+    # nothing of the disk's is in the target's rows and the other way round
+    assert np.all(in_disk[first - 1 :]) and not np.any(in_disk[: first - 1])
+
+
+def test_the_disks_start_a_gap_apart_on_the_line_through_first_touch():
+    """Rigid circles of radius R would first touch with their centres along +y:
+    the disk starts on the line through (0, 2 R) along the relative velocity,
+    its rough surface the cutoff and the start gap from the target's."""
+    from builder.binary import gap_between
+
+    spec = SceneSpec(**BINARY)
+    scene = build_scene(spec)
+    ring_b, ring_a = rings(scene)
+    cutoff = scene.info["contact"]["cutoff"]
+    assert gap_between(ring_a, ring_b) == pytest.approx(cutoff * (1 + spec.start_gap), rel=1e-6)
+    direction = np.array([1.0, -1.0]) / np.sqrt(2)
+    off = scene.disk_centre - [0.0, 2.0]
+    assert abs(off[0] * direction[1] - off[1] * direction[0]) < 1e-9
+
+
+def test_the_disk_is_the_wall_scenes_and_the_second_disk_another():
+    wall = build_scene(SceneSpec(n_disk=200, seed=4))
+    binary = build_scene(SceneSpec(**{**BINARY, "seed": 4}))
+    own = binary.frame_positions[binary.molecule == DISK]
+    assert np.array_equal(own, wall.frame_positions[wall.molecule == DISK])
+    target = binary.frame_positions[binary.molecule != DISK]
+    assert len(target) != len(own) or not np.array_equal(target, own)
+
+
+def test_partner_seed_takes_that_samples_disk():
+    sample_7 = build_scene(SceneSpec(**{**BINARY, "seed": 7}))
+    paired = build_scene(SceneSpec(**{**BINARY, "seed": 4, "partner_seed": 7}))
+    disk_7 = sample_7.frame_positions[sample_7.molecule == DISK]
+    assert np.array_equal(paired.frame_positions[paired.molecule != DISK], disk_7)
+
+
+@pytest.mark.parametrize(
+    "changes, words",
+    [
+        (dict(wall_width=12.0), "wall_width applies to target wall"),
+        (dict(n_wall=800), "n_wall applies to target wall"),
+        (dict(target="floor"), "target must be one of"),
+        (dict(target="wall", partner_lattice="random"), "partner_lattice applies to target disk"),
+        (dict(partner_lattice="hexagonal"), "partner_lattice must be one of"),
+    ],
+)
+def test_a_binary_scene_refuses_what_does_not_apply(changes, words):
+    with pytest.raises(InputError, match=words):
+        SceneSpec(**{**BINARY, **changes}).validate()
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--target", "disk", "--n-wall", "800"], "--n-wall applies to --target wall"),
+        (["--target", "disk", "--wall-width", "12"], "--wall-width applies to --target wall"),
+        (["--target", "disk", "--wall-fixed", "all"], "--wall-fixed applies to --target wall"),
+        (["--target", "disk", "--wall-ka", "1"], "--wall-ka applies to --target wall"),
+        (["--partner-lattice", "random"], "--partner-lattice applies to --target disk"),
+        (["--partner-seed", "3"], "--partner-seed applies to --target disk"),
+    ],
+)
+def test_the_command_line_refuses_wall_options_for_two_disks(tmp_path, args, words):
+    out = tmp_path / "scene"
+    proc = subprocess.run(
+        [sys.executable, "-m", "builder", "scene", "--out", str(out), *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 2
+    assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_a_binary_study_refuses_wall_options():
+    with pytest.raises(InputError, match="wall_fixed applies to target wall"):
+        Study("binary_wall_fixed", target="disk", wall_fixed="all").validate()
+
+
+@pytest.fixture(scope="module")
+def binary_runs(tmp_path_factory):
+    """One impact of two 200-point disks, by velocity Verlet on one rank and
+    two, and by rRESPA."""
+    root = tmp_path_factory.mktemp("binary")
+    spec = SceneSpec(**{**BINARY, "seed": 2})
+    runs = {}
+    for name, options in {
+        "verlet": RunOptions(),
+        "two ranks": RunOptions(nprocs=2),
+        "respa": RunOptions(integrator="respa", dt=RESPA_DT, nrespa=RESPA_NRESPA),
+    }.items():
+        runs[name] = run_impact(dataclasses.replace(spec), root / name.replace(" ", "_"), options)
+    return runs
+
+
+@pytest.mark.parametrize("run", ["verlet", "two ranks", "respa"])
+def test_a_binary_impact_conserves_momentum_and_angular_momentum(binary_runs, run):
+    """Nothing is held: the springs and the lever rule are central, Verlet
+    and rRESPA keep both momenta to round-off (1e-10 relative, the issue's)."""
+    result = binary_runs[run]
+    assert result["momentum_change"] < 1e-10
+    assert result["angular_momentum_change"] < 1e-10
+    assert abs(result["energy_drift"]) < 1e-3
+    assert 0.0 < result["e"] < 1.2 and -1.5 < result["beta"] < 1.0
+
+
+def test_one_and_two_ranks_give_the_same_rebound(binary_runs):
+    one, two = binary_runs["verlet"], binary_runs["two ranks"]
+    assert two["e"] == pytest.approx(one["e"], abs=1e-6)
+    assert two["beta"] == pytest.approx(one["beta"], abs=1e-6)
+
+
+# Synthetic series: two rigid disks whose centres move on straight lines and
+# meet, with the line of their centres along n, at one row.
+
+
+def synthetic_series(normal, v_in, v_out, spins_in, spins_out, masses=(800.0, 790.0), rows=41):
+    """A binary series.dat of rigid disks of radius 1: relative velocity
+    v_in before the row in the middle, v_out after it, the centre of mass at
+    rest; the centres 2 apart along ``normal`` at that row, where the
+    contact acts (pe_contact > 0 on the rows around it)."""
+    m_a, m_b = masses
+    inertia = (0.45 * m_a, 0.45 * m_b)
+    time = np.linspace(-2.0, 2.0, rows)
+    relative = np.where(time[:, None] < 0, time[:, None] * v_in, time[:, None] * v_out)
+    relative = relative + 2.0 * np.asarray(normal)
+    share_a, share_b = m_b / (m_a + m_b), -m_a / (m_a + m_b)
+    velocity = np.where(time[:, None] < 0, v_in, v_out)
+    spin_a = np.where(time < 0, spins_in[0], spins_out[0])
+    spin_b = np.where(time < 0, spins_in[1], spins_out[1])
+    values = {
+        "step": np.arange(rows),
+        "time": time,
+        "x": share_a * relative[:, 0],
+        "y": share_a * relative[:, 1],
+        "vx": share_a * velocity[:, 0],
+        "vy": share_a * velocity[:, 1],
+        "Lz": inertia[0] * spin_a,
+        "Izz": np.full(rows, inertia[0]),
+        "omega_z": spin_a,
+        "tx": share_b * relative[:, 0],
+        "ty": share_b * relative[:, 1],
+        "tvx": share_b * velocity[:, 0],
+        "tvy": share_b * velocity[:, 1],
+        "tLz": inertia[1] * spin_b,
+        "tIzz": np.full(rows, inertia[1]),
+        "tomega_z": spin_b,
+        "pe_contact": (np.abs(time) < 0.5).astype(float),
+    }
+    for name in ("fx", "fy", "tfx", "tfy"):
+        values[name] = np.zeros(rows)
+    return np.rec.fromarrays([values[c] for c in BINARY_COLUMNS], names=BINARY_COLUMNS)
+
+
+@pytest.mark.parametrize("angle", [0.0, 12.0, -30.0])
+def test_a_smooth_elastic_collision_gives_e_one_and_beta_minus_one(angle):
+    """Reflection about the apse's normal, spins unchanged: e = 1 and beta =
+    -1 at any orientation of the line of centres, and the normal found is it."""
+    theta = np.radians(angle)
+    normal = np.array([np.sin(theta), np.cos(theta)])
+    tangent = np.array([normal[1], -normal[0]])
+    v_in = -0.1 * normal + 0.07 * tangent
+    v_out = 0.1 * normal + 0.07 * tangent
+    series = synthetic_series(normal, v_in, v_out, (0.0, 0.0), (0.0, 0.0))
+    at, found = apse(series)
+    assert at == pytest.approx(0.0, abs=1e-12)
+    assert found == pytest.approx(normal, abs=1e-12)
+    rebound, where = binary_rebound(series)
+    assert rebound.e == pytest.approx(1.0, abs=1e-12)
+    assert rebound.beta == pytest.approx(-1.0, abs=1e-12)
+    assert rebound.cot_gamma == pytest.approx(0.1 / 0.07, rel=1e-12)
+    assert where["apse_angle_deg"] == pytest.approx(angle, abs=1e-9)
+
+
+def test_the_spins_enter_the_contact_points_velocity():
+    """Spins after the impact that stop the contact points' slip: beta = 0;
+    each disk's spin counts with R, both with the same sign (v_c = v_A - v_B
+    + R (w_A + w_B) t)."""
+    normal, tangent = np.array([0.0, 1.0]), np.array([1.0, 0.0])
+    v_in, v_out = -0.1 * normal + 0.1 * tangent, 0.1 * normal + 0.1 * tangent
+    series = synthetic_series(normal, v_in, v_out, (0.0, 0.0), (-0.04, -0.06))
+    rebound, _ = binary_rebound(series)
+    assert rebound.beta == pytest.approx(0.0, abs=1e-12)
+    assert rebound.e == pytest.approx(1.0, abs=1e-12)
+
+
+def test_momentum_change_measures_a_lost_momentum():
+    normal = np.array([0.0, 1.0])
+    v_in, v_out = np.array([0.05, -0.1]), np.array([0.05, 0.1])
+    series = synthetic_series(normal, v_in, v_out, (0.0, 0.0), (0.0, 0.0))
+    kept = momentum_change(series, (800.0, 790.0), 1.0)
+    assert kept["momentum_change"] < 1e-15 and kept["angular_momentum_change"] < 1e-15
+    series["tvx"][-1] += 1e-6  # the target loses momentum at the end
+    lost = momentum_change(series, (800.0, 790.0), 1.0)
+    scale = (800.0 + 790.0) * np.hypot(0.05, 0.1) * 0.5  # each disk: half the relative speed
+    assert lost["momentum_change"] == pytest.approx(790.0 * 1e-6 / scale, rel=1e-3)
