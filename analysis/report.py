@@ -11,11 +11,11 @@ from pathlib import Path
 from builder.errors import InputError
 from builder.scene import MODEL_READINGS
 
-from . import figures, grazing, speed, speed_page
+from . import binary_page, figures, grazing, speed, speed_page
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
-from .result import FINITE, MAX_DRIFT
+from .result import BINARY_FINITE, FINITE, MAX_DRIFT
 from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
     SECTIONS,
     drift_section,
@@ -50,7 +50,11 @@ def angle_options(study: dict) -> str:
 
 def wall_options(study: dict) -> str:
     """The study's reading of the wall as options (studies from before the
-    readings had the disk's density, springs for its c, the sides held)."""
+    readings had the disk's density, springs for its c, the sides held), or
+    a binary study's target (it has no wall)."""
+    if study.get("target") == "disk":
+        partner = study.get("partner_lattice")
+        return "--target disk" + (f" --partner-lattice {partner}" if partner else "")
     n_wall = study.get("n_wall", "density")
     wall_ka = study.get("wall_ka", "same-c")
     return (
@@ -77,13 +81,16 @@ def speed_options(study: dict) -> str:
 
 def made_by(study: dict, preset: str) -> str:
     """The command that runs the study again, every option spelled out."""
+    # a binary study has no wall (wall_options gives its target instead)
+    width = (
+        "" if study.get("target") == "disk" else f"--wall-width {study.get('wall_width', 8.0):g} "
+    )
     return (
         f"python -m runner study {preset} --name {study['name']} --lattices "
         f"{' '.join(study['lattices'])} {angle_options(study)} --samples {study['samples']} "
         f"{speed_options(study)} --roughness {study.get('roughness', 0.03):g} "
         f"--n-disk {study['n_disk']} --radius {study.get('radius', 1.0):g} "
-        f"--wall-width {study.get('wall_width', 8.0):g} "
-        f"--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
+        f"{width}--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
         f"{model_options(study)} "
         f"--dt {study['options']['dt']:g} "
         f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}"
@@ -364,7 +371,8 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
         rows, failed = read("impacts.csv"), read("failed.csv")
         rows = [with_model_readings(row) for row in rows]
         for line, row in enumerate(rows, start=2):
-            bad = [k for k in FINITE if not math.isfinite(float(row.get(k) or "nan"))]
+            finite = BINARY_FINITE if row.get("target") == "disk" else FINITE
+            bad = [k for k in finite if not math.isfinite(float(row.get(k) or "nan"))]
             if bad:
                 raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
     except (OSError, ValueError, KeyError) as error:
@@ -426,6 +434,11 @@ def render(
         extra["grazing"] = grazing.grazing_section(fits["grazing"], shown_figures)
         others = {name: read_tables(folder) for name, folder in (readings or {}).items()}
         extra["readings"] = grazing.readings_section(info, others, resamples)
+    if info.get("target") == "disk":  # two disks: beside the same disks on the wall
+        walls = {name: read_tables(folder)[1] for name, folder in (readings or {}).items()}
+        fits["wall_comparison"] = binary_page.comparison(rows, walls, resamples)
+        binary_page.draw(fits["wall_comparison"], figure_dir)
+        extra["wall_comparison"] = binary_page.section(fits["wall_comparison"], shown_figures)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     seconds = sum(float(r["wall_seconds"]) for r in rows)

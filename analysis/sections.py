@@ -19,6 +19,7 @@ SECTIONS = (
     "wall_ends",
     "grazing",
     "readings",
+    "wall_comparison",  # a binary study's (analysis.binary_page)
 )
 
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")

@@ -187,7 +187,7 @@ def test_a_folded_ring_does_not_take_a_point_outside_for_inside(tmp_path):
     e_in, e_out = ring[vertex] - ring[vertex - 1], ring[vertex + 1] - ring[vertex]
     left = [a[0] * d[1] - a[1] * d[0] > 0 for a in (e_in, e_out)]
     convex = e_in[0] * e_out[1] - e_in[1] * e_out[0] >= 0
-    assert (all(left) if convex else any(left)), "not the fold's case"
+    assert all(left) if convex else any(left), "not the fold's case"
     expected = ring_contact(point, ring, A, V0, CUTOFF)  # every edge's crossing: outside
     energy, on_ring, on_point = lammps_forces(
         tmp_path, ring, point, extra=("-var", "keywords", "closed yes")

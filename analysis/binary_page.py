@@ -1,0 +1,234 @@
+"""Two disks colliding beside the same disks on the wall: a binary study's
+comparison, its figures and its page section (analysis.report's
+``wall_comparison``).
+
+The binary study's seeds and angles are those of a wall study (the paper's,
+docs/results/): a seed's disk is the same in both (builder/binary.py), so
+each seed gives a pair of impacts, and every error resamples whole seeds of
+both studies together (analysis.seeds).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .estimates import study_estimates
+from .page import pm
+from .seeds import SeedTable, seed_bootstrap, seed_tables
+
+TARGETS = ("disk", "wall")
+QUANTITIES = ("e", "beta", "cot_gamma", "vibration_disk", "vibration_wall")
+# The claims' rule for "the same" (analysis.claims): within 2 errors the two
+# agree, beyond 3 they differ, in between undecided.
+SAME, DIFFERENT = 2.0, 3.0
+
+
+def verdict(difference: float, error: float) -> str:
+    if not (np.isfinite(difference) and np.isfinite(error)):
+        return "-"
+    if abs(difference) <= SAME * error:
+        return "same"
+    return "differs" if abs(difference) > DIFFERENT * error else "undecided"
+
+
+def paired_rows(rows: list[dict], wall_rows: list[dict]) -> tuple[list[dict], list[dict]]:
+    """The wall study's impacts of the binary study's lattices, seeds and
+    angles, and the binary study's of the wall's: the pairs both have."""
+    keys = lambda r: (r["study_lattice"], int(float(r["seed"])), float(r["gamma_deg"]))  # noqa: E731
+    both = {keys(r) for r in rows} & {keys(r) for r in wall_rows}
+    return [r for r in rows if keys(r) in both], [r for r in wall_rows if keys(r) in both]
+
+
+def comparison(rows: list[dict], walls: dict[str, list[dict]], resamples: int = 200) -> dict:
+    """Per lattice and angle: e, beta, cot gamma and the vibrations of the
+    binary impacts and of the wall's, their differences, each with its seed-
+    bootstrap error, and the verdicts; both studies' fits; the momenta.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The binary study's impacts.csv rows.
+    walls : dict
+        The wall study's rows by its tables' name (one study: the first).
+    resamples : int
+        Seed-bootstrap resamples.
+
+    Returns
+    -------
+    dict
+        What fits.json keeps under ``wall_comparison``.
+    """
+    if not walls:
+        return {}
+    name, wall_rows = next(iter(walls.items()))
+    disk_rows, wall_rows = paired_rows(rows, wall_rows)
+    labelled = [{**r, "study_lattice": f"{r['study_lattice']}|disk"} for r in disk_rows] + [
+        {**r, "study_lattice": f"{r['study_lattice']}|wall"} for r in wall_rows
+    ]
+    tables = seed_tables(labelled, QUANTITIES)
+    lattices = sorted({r["study_lattice"] for r in disk_rows})
+
+    def statistic(ts: dict[str, SeedTable]) -> dict:
+        out = {}
+        for lattice in lattices:
+            disk, wall = ts[f"{lattice}|disk"], ts[f"{lattice}|wall"]
+            for q in QUANTITIES:
+                out[f"{lattice}/{q}/disk"] = disk.mean(q)
+                out[f"{lattice}/{q}/wall"] = wall.mean(q)
+            for q in ("e", "beta"):
+                out[f"{lattice}/{q}/difference"] = disk.mean(q) - wall.mean(q)
+        return out
+
+    central = statistic(tables)
+    error = seed_bootstrap(tables, statistic, resamples)
+    out: dict = {"wall_tables": name, "pairs": len(disk_rows), "lattices": {}}
+    for lattice in lattices:
+        entry = {
+            "gamma_deg": tables[f"{lattice}|disk"].gamma_deg.tolist(),
+            "impacts": tables[f"{lattice}|disk"].counts().tolist(),
+        }
+        for key in central:
+            if key.startswith(f"{lattice}/"):
+                short = key[len(lattice) + 1 :].replace("/", "_")
+                entry[short] = np.asarray(central[key]).tolist()
+                entry[short + "_error"] = np.asarray(error[key]).tolist()
+        for q in ("e", "beta"):
+            entry[f"{q}_verdict"] = [
+                verdict(d, s)
+                for d, s in zip(entry[f"{q}_difference"], entry[f"{q}_difference_error"])
+            ]
+        out["lattices"][lattice] = entry
+    out["fits"] = {
+        "disk": study_estimates(disk_rows, resamples)[0]["lattices"],
+        "wall": study_estimates(wall_rows, resamples)[0]["lattices"],
+    }
+    for name_, key in (("momentum_change", "momentum"), ("angular_momentum_change", "angular")):
+        out[f"largest_{key}_change"] = max(float(r[name_]) for r in disk_rows)
+    return out
+
+
+def draw(numbers: dict, folder: Path | str) -> None:
+    """e and beta against cot gamma, two disks (filled) beside the wall (open)."""
+    if not numbers:
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    for q, label in (("e", "e"), ("beta", "beta")):
+        fig, ax = plt.subplots(figsize=(6.4, 4.6))
+        ax.set_xscale("log")
+        ax.set_xlabel("cot gamma (mean of the measured)")
+        ax.set_ylabel(label)
+        for colour, (lattice, entry) in zip(("C0", "C1", "C2", "C3"), numbers["lattices"].items()):
+            for target, face in (("disk", colour), ("wall", "none")):
+                x = np.asarray(entry[f"cot_gamma_{target}"])
+                keep = x > 0
+                ax.errorbar(
+                    x[keep],
+                    np.asarray(entry[f"{q}_{target}"])[keep],
+                    yerr=np.asarray(entry[f"{q}_{target}_error"])[keep],
+                    fmt="o" if target == "disk" else "s",
+                    color=colour,
+                    mfc=face,
+                    capsize=2,
+                    label=f"{lattice}, on {'a disk' if target == 'disk' else 'the wall'}",
+                )
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(folder / f"binary_{q}.png", dpi=110)
+        plt.close(fig)
+
+
+def fit_rows(fits: dict) -> list[str]:
+    """Walton's and the compliant fits and the model-free measures, both targets."""
+    lines = [
+        "| lattice | hits | Walton mu | Walton beta0 | chi2/dof | compliant mu | "
+        "e near normal | beta at cot gamma >= 4 | mu_eff on the sliding branch |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for lattice in fits["disk"]:
+        for target in TARGETS:
+            f = fits[target][lattice]
+            walton, compliant = f["walton"]["measured"], f.get("compliant", {}).get("measured", {})
+            m = f["measures"]
+            lines.append(
+                f"| {lattice} | {'a disk' if target == 'disk' else 'the wall'} | "
+                f"{pm(walton['mu'], walton.get('mu_sd'))} | "
+                f"{pm(walton['beta0'], walton.get('beta0_sd'))} | {walton['chi2']:.1f} | "
+                f"{pm(compliant.get('mu'), compliant.get('mu_sd'))} | "
+                f"{pm(m['e_normal']['value'], m['e_normal']['sd'])} | "
+                f"{pm(m['beta_normal']['value'], m['beta_normal']['sd'])} | "
+                f"{pm(m['mu_eff_top']['value'], m['mu_eff_top']['sd'])} |"
+            )
+    return lines
+
+
+def section(numbers: dict, figure_dir: str) -> list[str]:
+    """The page's section: the tables of the comparison and its figures."""
+    if not numbers:
+        return []
+    lines = [
+        "## Two disks beside the same disks on the wall",
+        "",
+        f"Each seed's disk hits a second disk here and the wall in `{numbers['wall_tables']}` "
+        f"({numbers['pairs']} pairs of impacts, same seed, lattice and angle). e and beta of "
+        "two disks are those of the contact points' relative velocity at the line of centres "
+        "where the centres come closest (docs/model.md, 'Two disks'); cot gamma is measured "
+        "there too, and lies below the nominal one, which sets the first touch of rigid "
+        "circles. Every +- is the seed bootstrap's error (whole seeds of both studies "
+        "resampled together); a difference is 'same' within 2 errors, 'differs' beyond 3.",
+        "",
+        f"Total momentum and angular momentum: the largest change over a run, relative to the "
+        f"disks' own, is {numbers['largest_momentum_change']:.1e} and "
+        f"{numbers['largest_angular_change']:.1e}.",
+        "",
+    ]
+    for lattice, entry in numbers["lattices"].items():
+        lines += [
+            f"### {lattice}",
+            "",
+            "| gamma (nominal) | cot gamma, disks | e, disks | e, wall | difference | "
+            "beta, disks | beta, wall | difference | vibration: disk, 2nd disk | "
+            "vibration: disk, wall |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+        ]
+        for j, gamma in enumerate(entry["gamma_deg"]):
+            cell = lambda key: pm(entry[key][j], entry[key + "_error"][j])  # noqa: E731
+            lines.append(
+                f"| {gamma:.1f} | {cell('cot_gamma_disk')} | {cell('e_disk')} | "
+                f"{cell('e_wall')} | {cell('e_difference')} ({entry['e_verdict'][j]}) | "
+                f"{cell('beta_disk')} | {cell('beta_wall')} | {cell('beta_difference')} "
+                f"({entry['beta_verdict'][j]}) | "
+                f"{entry['vibration_disk_disk'][j]:.3f}, {entry['vibration_wall_disk'][j]:.3f} | "
+                f"{entry['vibration_disk_wall'][j]:.3f}, {entry['vibration_wall_wall'][j]:.3f} |"
+            )
+        counts = {v: entry["e_verdict"].count(v) for v in ("same", "undecided", "differs")}
+        beta_counts = {v: entry["beta_verdict"].count(v) for v in ("same", "undecided", "differs")}
+        lines += [
+            "",
+            f"e: the same at {counts['same']} angles, undecided at {counts['undecided']}, "
+            f"different at {counts['differs']}; beta: the same at {beta_counts['same']}, "
+            f"undecided at {beta_counts['undecided']}, different at {beta_counts['differs']}.",
+            "",
+        ]
+    lines += [
+        "### The fits both ways",
+        "",
+        "Walton's law and the compliant model fitted the measured way (e per angle, K from "
+        "the disks' measured inertia), with the model-free measures beside them "
+        "(analysis.estimates); chi2/dof above 2: the law does not describe the data.",
+        "",
+        *fit_rows(numbers["fits"]),
+        "",
+        f"![e, two disks and the wall]({figure_dir}/binary_e.png)",
+        "",
+        f"![beta, two disks and the wall]({figure_dir}/binary_beta.png)",
+        "",
+    ]
+    return lines

@@ -1,0 +1,74 @@
+"""The binary study's comparison with the wall (analysis.binary_page), and
+its committed page made again from the committed tables."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analysis.binary_page import comparison, verdict
+from tests.helpers import ROOT
+from tests.synthetic import impact_rows
+
+WALL_BETA = lambda psi: np.minimum(0.2, -1 + 0.3 * psi)  # noqa: E731
+
+
+def binary(rows: list[dict], shift: float) -> list[dict]:
+    """The same impacts between two disks, e higher by ``shift``."""
+    return [
+        {**r, "target": "disk", "e": float(r["e"]) + shift, "side_clearance": "",
+         "momentum_change": 1e-15, "angular_momentum_change": 2e-15}
+        for r in rows
+    ]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "difference, error, expected",
+    [(0.1, 0.05, "same"), (0.1, 0.04, "undecided"), (-0.1, 0.03, "differs"), (0.1, np.nan, "-")],
+)
+def test_the_verdict_is_the_claims_rule(difference, error, expected):
+    assert verdict(difference, error) == expected
+
+
+def test_pairs_by_seed_cancel_what_a_seed_shares():
+    """Two disks with e higher by 0.05 than on the wall, beta the same: the
+    seed-paired differences are exact (their errors 0) although each mean's
+    error is not, and the verdicts follow."""
+    wall = impact_rows("random", WALL_BETA, seeds=12, offset_sd=0.1, noise_sd=0.03)
+    numbers = comparison(binary(wall, 0.05), {"wall": wall}, resamples=20)
+    entry = numbers["lattices"]["random"]
+    assert numbers["pairs"] == len(wall)
+    assert np.allclose(entry["e_difference"], 0.05, atol=1e-12)
+    assert np.allclose(entry["beta_difference"], 0.0, atol=1e-12)
+    assert max(entry["e_difference_error"]) < 1e-12
+    assert min(entry["beta_disk_error"]) > 0.01  # each mean scatters with the seeds
+    assert set(entry["e_verdict"]) == {"differs"} and set(entry["beta_verdict"]) == {"same"}
+    assert numbers["largest_angular_change"] == pytest.approx(2e-15)
+
+
+def test_only_impacts_both_studies_have_are_compared():
+    wall = impact_rows("random", WALL_BETA, seeds=8)
+    disks = binary([r for r in wall if int(r["seed"]) <= 5], 0.0)
+    numbers = comparison(disks, {"wall": wall}, resamples=10)
+    assert numbers["pairs"] == len(disks)
+    assert max(numbers["lattices"]["random"]["impacts"]) == 5
+
+
+def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
+    """docs/binary_grazing.md from docs/binary_grazing/ and the wall's
+    docs/grazing/: the same page, but for where it says its files are."""
+    from analysis.report import report_from_tables
+    from runner.study import PAGE_SECTIONS
+
+    docs = ROOT / "docs"
+    page = tmp_path / "binary_grazing.md"
+    report_from_tables(
+        docs / "binary_grazing",
+        page,
+        preset="binary_grazing",
+        out=tmp_path / "tables",
+        readings={"grazing": docs / "grazing"},
+        sections=PAGE_SECTIONS["binary_grazing"],
+    )
+    made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
+    assert made == (docs / "binary_grazing.md").read_text()
