@@ -35,7 +35,7 @@ help:
 	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the default scene changes)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
-	@echo "make validate      LAMMPS against the in-house reference integrator, nine scenes"
+	@echo "make validate      LAMMPS against the in-house reference integrator, ten scenes"
 	@echo "make bench         run time against error of integrators and time steps"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
 	@echo "make bench-study   run settings, stop rule and stability benchmarks (docs/benchmarks/)"
@@ -189,7 +189,7 @@ lint: $(STAMPS)/python
 calibrate: setup
 	$(PYTHON) -m calibration run --install
 
-# LAMMPS at the default settings against the reference on nine scenes
+# LAMMPS at the default settings against the reference on ten scenes
 # (docs/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
 	$(PYTHON) -m reference validate --docs

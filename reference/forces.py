@@ -1,4 +1,4 @@
-"""Forces of the whole model: class2 springs and the disk-wall contact."""
+"""Forces of the whole model: class2 springs and the contact (disk and wall, or two disks)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sparse
 
-from .contact import polyline_contact
+from .contact import polyline_contact, two_ring_contact
 from .data import System
 
 LIBRARY = Path(__file__).resolve().parents[1] / "build" / "libreference_springs.so"
@@ -38,6 +38,9 @@ class Model:
     wall_row: np.ndarray  # indices of the wall's surface polyline, in order
     contact: str = "segment"  # segment or pair
     rule: str = "lever"
+    # a binary scene's: the disk's surface ring, which wall_row (the second
+    # disk's ring) repels and which repels it (reference.contact.two_ring_contact)
+    partner_ring: np.ndarray | None = None
     compiled: bool = True  # springs by the C loop when it is built
     incidence: sparse.csr_matrix = field(init=False, repr=False)
 
@@ -75,6 +78,8 @@ class Model:
 
     def contact_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         force = np.zeros_like(x)
+        if self.partner_ring is not None:
+            return self._ring_forces(x, force)
         points, row = x[self.disk_surface], x[self.wall_row]
         # only disk points in range of the wall, and the part of the wall under
         # them: the parity test needs only segments that straddle a point's x
@@ -98,6 +103,16 @@ class Model:
             force[wall_points] = result.on_vertices
             return force, result.energy
         return self._pair_forces(x[disk_points], x[wall_points], disk_points, wall_points, force)
+
+    def _ring_forces(self, x: np.ndarray, force: np.ndarray) -> tuple[np.ndarray, float]:
+        """Two disks: both rings whole, every point against the other's ring."""
+        ring_a, ring_b = self.partner_ring, self.wall_row
+        if self.contact == "pair":
+            return self._pair_forces(x[ring_a], x[ring_b], ring_a, ring_b, force)
+        result = two_ring_contact(x[ring_a], x[ring_b], self.a, self.v0, self.cutoff, self.rule)
+        force[ring_a] = result.on_points
+        force[ring_b] = result.on_vertices
+        return force, result.energy
 
     def _pair_forces(self, points, row, disk_points, wall_points, force):
         """The pair variant: the same exponential between points."""

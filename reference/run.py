@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import analyse_run, write_json_atomically
+from analysis.series import BINARY_COLUMNS, COLUMNS
 from builder.errors import InputError
 
 from .contact import InsideWall
@@ -56,6 +57,10 @@ def load_model(folder: Path, options: ReferenceOptions) -> Model:
     system = read_data(folder / "scene.data")
     first, last = scene["wall_row_tags"]
     contact = scene["contact"]
+    partner = None
+    if scene.get("target") == "disk":
+        a_first, a_last = scene["partner_row_tags"]
+        partner = np.arange(a_first - 1, a_last)
     return Model(
         system=system,
         a=contact["a"],
@@ -65,33 +70,41 @@ def load_model(folder: Path, options: ReferenceOptions) -> Model:
         wall_row=np.arange(first - 1, last),
         contact=options.contact,
         rule=options.rule,
+        partner_ring=partner,
     )
 
 
 class Observer:
-    """The disk's rigid-body motion, as decks/impact.lmp records it."""
+    """The disk's rigid-body motion, as decks/impact.lmp records it (and the
+    second disk's too, as decks/binary.lmp does)."""
 
     def __init__(self, model: Model, reach_margin: float = 0.0):
         s = model.system
         self.model = model
         self.disk = np.flatnonzero(s.molecule == DISK)
         self.wall = np.flatnonzero(s.molecule != DISK)
-        self.mass = s.mass[self.disk]
-        self.total = self.mass.sum()
+        self.binary = model.partner_ring is not None
 
-    def rigid(self, x, v):
-        xd, vd, m = x[self.disk], v[self.disk], self.mass
-        com = m @ xd / self.total
-        vcm = m @ vd / self.total
+    def rigid(self, x, v, atoms=None):
+        atoms = self.disk if atoms is None else atoms
+        xd, vd, m = x[atoms], v[atoms], self.model.system.mass[atoms]
+        total = m.sum()
+        com = m @ xd / total
+        vcm = m @ vd / total
         r, u = xd - com, vd - vcm
         lz = float(np.sum(m * (r[:, 0] * u[:, 1] - r[:, 1] * u[:, 0])))
         izz = float(np.sum(m * (r * r).sum(axis=1)))
         return com, vcm, lz, izz
 
+    def header(self) -> str:
+        return "# " + " ".join(BINARY_COLUMNS if self.binary else COLUMNS) + "\n"
+
     def row(self, step, t, x, v, contact_force, e_contact):
-        com, vcm, lz, izz = self.rigid(x, v)
-        f = contact_force[self.disk].sum(axis=0)
-        values = (*com, *vcm, lz, izz, lz / izz, *f, e_contact)
+        values = []
+        for atoms in (self.disk, self.wall) if self.binary else (self.disk,):
+            com, vcm, lz, izz = self.rigid(x, v, atoms)
+            values += [*com, *vcm, lz, izz, lz / izz, *contact_force[atoms].sum(axis=0)]
+        values.append(e_contact)
         return f"{step} {t:.10g} " + " ".join(repr(float(value)) for value in values) + "\n"
 
     def energies(self, t, x, v, e_contact):
@@ -111,8 +124,20 @@ class Observer:
         )
         return f"{t:.10g} " + " ".join(repr(float(value)) for value in values) + "\n"
 
-    def finished(self, x) -> bool:
-        """The deck's rule: the disk's lowest possible point clears the wall by the cutoff."""
+    def finished(self, x, v, e_contact: float) -> bool:
+        """The deck's rule: the disk's lowest possible point clears the wall by
+        the cutoff; two disks (decks/binary.lmp): no contact, the centres
+        further apart than both reaches and the cutoff, and moving apart."""
+        if self.binary:
+            if e_contact > 0.0:
+                return False
+            (com_a, v_a, *_), (com_b, v_b, *_) = self.rigid(x, v), self.rigid(x, v, self.wall)
+            reaches = sum(
+                np.linalg.norm(x[ring] - com, axis=1).max()
+                for ring, com in ((self.model.partner_ring, com_a), (self.model.wall_row, com_b))
+            )
+            r = com_a - com_b
+            return np.linalg.norm(r) - reaches > self.model.cutoff and r @ (v_a - v_b) > 0
         com = self.rigid(x, np.zeros_like(x))[0]
         surface = self.model.disk_surface
         reach = np.linalg.norm(x[surface] - com, axis=1).max()
@@ -184,12 +209,10 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
 
     start = time.perf_counter()
     force, contact, e_contact = stepper.forces(x)
-    series = [
-        "# step time x y vx vy Lz Izz omega_z fx fy pe_contact\n",
-        observe.row(0, 0.0, x, v, contact, e_contact),
-    ]
+    series = [observe.header(), observe.row(0, 0.0, x, v, contact, e_contact)]
+    body = "target" if observe.binary else "wall"
     energies = [
-        "# time ke_disk pe_disk ke_wall pe_wall pe_contact\n",
+        f"# time ke_disk pe_disk ke_{body} pe_{body} pe_contact\n",
         observe.energies(0.0, x, v, e_contact),
     ]
     touched, step = False, 0
@@ -207,7 +230,7 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
             if not np.isfinite(v).all():
                 raise Unstable(f"the run went unstable at time {step * dt:.4g}")
             touched = touched or e_contact > 0.0
-            if touched and observe.finished(x):
+            if touched and observe.finished(x, v, e_contact):
                 break
             if step * dt >= options.tmax:
                 raise Unstable(f"the disk has not left the wall by tmax = {options.tmax}")

@@ -37,14 +37,24 @@ ANGLES = (5.7, 45.0, 80.4)  # near-normal, middle, grazing
 REFERENCE = ReferenceOptions(integrator="suzuki", dt=1e-3)
 
 
+# Two random disks colliding (builder/binary.py) at the middle angle.
+BINARY = {"random_disk_g45": {"lattice": "random", "gamma_deg": 45.0, "target": "disk"}}
+
+
 def scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
-    return {
+    """The nine scenes of the disks on the wall, and one of two disks."""
+    on_the_wall = {
         f"{lattice}_g{gamma:g}": SceneSpec(
             lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra
         )
         for lattice, extra in LATTICES.items()
         for gamma in ANGLES
     }
+    two_disks = {
+        name: SceneSpec(n_disk=n_disk, roughness=roughness, **fields)
+        for name, fields in BINARY.items()
+    }
+    return {**on_the_wall, **two_disks}
 
 
 def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REFERENCE) -> dict:

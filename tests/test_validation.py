@@ -1,7 +1,8 @@
 """LAMMPS at its default settings against the reference (make validate, small).
 
-Nine scenes: random, triangular and square lattices at a near-normal (5.7), a
-middle (45) and a grazing (80.4 degree) angle, with 200-point disks for speed.
+Ten scenes: random, triangular and square lattices at a near-normal (5.7), a
+middle (45) and a grazing (80.4 degree) angle on the wall, and two random
+disks colliding at 45 degrees, with 200-point disks for speed.
 Smooth surfaces, where e and beta of one impact converge: LAMMPS's defaults
 against the reference's converged fourth-order run, within 1e-3. Rough
 surfaces, where they do not (chaos, docs/validation.md): LAMMPS against the
