@@ -14,6 +14,8 @@ so that decks/setup.lmp's groups and exclusions serve both scenes.
 
 from __future__ import annotations
 
+from dataclasses import asdict, replace
+
 import numpy as np
 
 from . import bodies
@@ -30,13 +32,15 @@ from .scene import (
     WALL_SURFACE,
     Scene,
     SceneSpec,
-    _disk,
     _sample_seeds,
     contact_energy,
     on_grid,
     placement_quantum,
+    renumbered,
     require_contact_resolved,
+    sample_disk,
     speed_unit,
+    units_info,
 )
 
 TARGET = WALL_FREE  # the target's molecule ID: decks/setup.lmp's group wall
@@ -55,9 +59,7 @@ def partner_body(spec: SceneSpec) -> Body:
     lattice = spec.partner_lattice or spec.lattice
     readings = (spec.roughness_direction, spec.surface_row, spec.regular_surface)
     if spec.partner_seed is not None:
-        return _disk(
-            lattice, spec.partner_seed, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings
-        )
+        return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
     rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
     return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
 
@@ -111,16 +113,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
         both disks' masses, moments of inertia and rings.
     """
     R = spec.radius
-    disk = _disk(
-        spec.lattice,
-        spec.seed,
-        spec.n_disk,
-        spec.roughness,
-        spec.k2_over_k1,
-        spec.roughness_direction,
-        spec.surface_row,
-        spec.regular_surface,
-    )
+    disk = sample_disk(spec)
     target = partner_body(spec)
     partner_lattice = spec.partner_lattice or spec.lattice
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
@@ -176,13 +169,11 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     )
     molecule = np.concatenate([np.full(n_target, TARGET), np.full(len(disk_order), DISK)])
 
-    def renumber(springs, order, offset):
-        new_index = np.empty(len(order), int)
-        new_index[order] = np.arange(len(order)) + offset
-        return np.sort(new_index[springs], axis=1)
-
     springs = np.concatenate(
-        [renumber(target.springs, target_order, 0), renumber(disk.springs, disk_order, n_target)]
+        [
+            renumbered(target.springs, target_order, 0),
+            renumbered(disk.springs, disk_order, n_target),
+        ]
     )
     ka = np.concatenate([ka_target * target.stiffness, ka_disk * disk.stiffness])
     scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
@@ -224,8 +215,6 @@ def binary_info(
 ) -> dict:
     """Derived quantities of a binary scene that a run and its analysis need;
     the wall scene's keys where they mean the same (``scene_info``)."""
-    from dataclasses import asdict
-
     spec = scene.spec
     R = spec.radius
     in_disk = scene.molecule == DISK
@@ -241,18 +230,7 @@ def binary_info(
     return {
         "spec": asdict(spec),
         "target": "disk",
-        "units": {
-            "length": "R",
-            "velocity": "c",
-            "time": "R/c",
-            "mass": "m (one point)",
-            "R": R,
-            "c": 1.0,
-            "m": 1.0,
-            "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
-            f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
-            "vn_unit": speed_unit(spec, disk_spacing, ka_disk),
-        },
+        "units": units_info(spec, disk_material, disk_spacing, ka_disk),
         "disk_material": disk_material,
         "target_material": target_material,
         "n_atoms": int(len(scene.positions)),

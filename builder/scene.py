@@ -364,16 +364,7 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
         Points, springs and surfaces of each body, unscaled and unplaced.
     """
     return (
-        _disk(
-            spec.lattice,
-            spec.seed,
-            spec.n_disk,
-            spec.roughness,
-            spec.k2_over_k1,
-            spec.roughness_direction,
-            spec.surface_row,
-            spec.regular_surface,
-        ),
+        sample_disk(spec),
         _wall(
             spec.seed,
             spec.wall_points,
@@ -439,6 +430,45 @@ def place_disk(
             return centre
         centre = centre + excess * direction
     raise RuntimeError("disk placement did not converge")
+
+
+def renumbered(springs: np.ndarray, order: np.ndarray, offset: int) -> np.ndarray:
+    """A body's springs in the scene's atom order: atom ``order[k]`` of the
+    body becomes atom ``offset + k``; each spring's ends in increasing order."""
+    new_index = np.empty(len(order), int)
+    new_index[order] = np.arange(len(order)) + offset
+    return np.sort(new_index[springs], axis=1)
+
+
+def units_info(spec: SceneSpec, disk_material: dict, disk_spacing: float, ka_disk: float) -> dict:
+    """scene.json's units: R, c, m, where c comes from, and the unit of vn."""
+    return {
+        "length": "R",
+        "velocity": "c",
+        "time": "R/c",
+        "mass": "m (one point)",
+        "R": spec.radius,
+        "c": 1.0,
+        "m": 1.0,
+        "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
+        f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
+        # what vn is in units of: c, or the springs' d sqrt(ka / m) (spec.speed_unit)
+        "vn_unit": speed_unit(spec, disk_spacing, ka_disk),
+    }
+
+
+def sample_disk(spec: SceneSpec) -> Body:
+    """The sample's disk, unscaled and unplaced (cached: ``_disk``)."""
+    return _disk(
+        spec.lattice,
+        spec.seed,
+        spec.n_disk,
+        spec.roughness,
+        spec.k2_over_k1,
+        spec.roughness_direction,
+        spec.surface_row,
+        spec.regular_surface,
+    )
 
 
 def build_scene(spec: SceneSpec) -> Scene:
@@ -513,13 +543,8 @@ def build_scene(spec: SceneSpec) -> Scene:
     velocities = np.zeros_like(positions)
     velocities[n_wall:] = velocity
 
-    def renumber(springs, order, offset):
-        new_index = np.empty(len(order), int)
-        new_index[order] = np.arange(len(order)) + offset
-        return np.sort(new_index[springs], axis=1)
-
     springs = np.concatenate(
-        [renumber(wall.springs, wall_order, 0), renumber(disk.springs, disk_order, n_wall)]
+        [renumbered(wall.springs, wall_order, 0), renumbered(disk.springs, disk_order, n_wall)]
     )
     ka = np.concatenate([ka_wall * wall.stiffness, ka_disk * disk.stiffness])
     types = np.concatenate([wall_types, disk_types])
@@ -571,19 +596,7 @@ def scene_info(
     a = spec.contact_a / R
     return {
         "spec": asdict(spec),
-        "units": {
-            "length": "R",
-            "velocity": "c",
-            "time": "R/c",
-            "mass": "m (one point)",
-            "R": R,
-            "c": 1.0,
-            "m": 1.0,
-            "c_source": f"calibrated: c^2 = {disk_material['c2']:.5f} ka d^2/m "
-            f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
-            # what vn is in units of: c, or the springs' d sqrt(ka / m) (spec.speed_unit)
-            "vn_unit": speed_unit(spec, disk.spacing * R, ka_disk),
-        },
+        "units": units_info(spec, disk_material, disk.spacing * R, ka_disk),
         "disk_material": disk_material,
         "wall_material": wall_material,
         "n_atoms": int(len(scene.positions)),
