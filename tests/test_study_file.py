@@ -161,7 +161,7 @@ def test_a_bad_sweep_is_refused_on_the_command_line_in_one_line(tmp_path):
 
 def test_a_name_is_a_file_in_studies():
     assert study_path("paper") == STUDIES / "paper.toml"
-    with pytest.raises(InputError, match="one of demo, grazing, paper, speed"):
+    with pytest.raises(InputError, match="one of demo, fact_sensitivity, grazing, model_readings"):
         study_path("no_such_study")
 
 
