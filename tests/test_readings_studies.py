@@ -123,9 +123,27 @@ def test_the_fact_sensitivity_file_is_the_study_of_its_table():
     assert max(int(r["seed"]) for r in rows) == 12
 
 
+def test_the_wall_width_file_is_the_study_of_its_table():
+    """Each seed and angle on the 8 R and the 16 R wall, whose points scale
+    with its width (the disk's density): the 16 R wall has twice the 8 R's."""
+    subs = studies_of("wall_width")
+    assert [(s.wall_width, s.n_wall) for s in subs] == [(8.0, "density"), (16.0, "density")]
+    for sub in subs:
+        assert sub.gammas() == [63.52, 73.9, 80.5] and sub.samples == 12
+    rows = rows_of("wall_width")
+    assert len(rows) == 2 * 3 * 12 and not any(r["error"] for r in rows)
+    points = {float(r["wall_width"]): int(r["n_wall_points"]) for r in rows if r["seed"] == "1"}
+    assert points[16.0] == pytest.approx(2 * points[8.0], rel=0.02)
+
+
 @pytest.mark.parametrize(
     ("name", "table_rows"),
-    [("scene_readings", 18 + 3), ("model_readings", 35), ("fact_sensitivity", 5)],
+    [
+        ("scene_readings", 18 + 3),
+        ("model_readings", 35),
+        ("fact_sensitivity", 5),
+        ("wall_width", 3 * 2),
+    ],
 )
 def test_the_committed_page_is_made_again_from_its_table(tmp_path, name, table_rows):
     """runner page: the committed page, byte for byte, from the committed table."""
