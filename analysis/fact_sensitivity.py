@@ -19,6 +19,7 @@ from .model_readings import COLUMNS as READING_COLUMNS
 from .model_readings import FACTS as READING_FACTS
 from .model_readings import fact_numbers
 from .readings import Setup, markdown_table
+from .render import render
 
 TITLE = "How the facts move with speed and roughness"
 FIGURE = "fact_sensitivity.png"
@@ -130,17 +131,15 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
         table.append(cells)
     base = tuple(setup.choices[0][a] for a in AXES)
     draw(summaries, base, figures / FIGURE)
-    return (
-        f"Random disk (800 points) on wall `{setup.named.get('wall')}`, model "
-        f"`{setup.named.get('model')}` ([model_readings.md](model_readings.md)), "
-        f"{study['angles']} angles from 5.7 to 80.5 degrees, seeds 1 "
-        f"to {study['samples']}, Verlet at dt = {study['options']['dt']:g} R/c. **e**: mean over "
-        "cot gamma >= 1 (paper 0.8); "
-        "**mu**, **beta0**: Walton's fit the paper's way, e 0.8 and K 3 (paper 0.18, 0.56). "
-        "Each value +- its error: the seed-bootstrap sd, combined with the fit's systematic "
-        "error where its reduced chi^2 is above the limit (analysis.claims).\n\n"
-        + markdown_table(header, table)
-        + f"\n\n![the facts against v_n and the roughness]({setup.figures}/{FIGURE})\n\n"
-        f"One row per impact: `{study['name']}/rows.csv` (`python -m runner page "
-        f"{study['name']}` makes this page and the figure again from it).\n"
+    return render(
+        "fact_sensitivity.md.j2",
+        wall=setup.named.get("wall"),
+        model=setup.named.get("model"),
+        angles=study["angles"],
+        samples=study["samples"],
+        dt=study["options"]["dt"],
+        table=markdown_table(header, table),
+        figures=setup.figures,
+        figure=FIGURE,
+        name=study["name"],
     )
