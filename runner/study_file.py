@@ -57,6 +57,7 @@ from analysis.kinds import KINDS, READINGS_KINDS
 from analysis.readings import NAMED
 from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
+from builder.materials import STUDY_LATTICES
 from builder.scene import ANGLE
 
 from .options import RunOptions
@@ -258,6 +259,12 @@ def read_rerun(path: Path, table, kind: str) -> dict:
                 f", got {value!r}"
             )
     out = {**RERUN, **table}
+    for lattice in out["then_lattices"]:  # refused now, not after the first pass's hours
+        if lattice not in STUDY_LATTICES:
+            raise InputError(
+                f"{path}: [rerun] then_lattices must be among {', '.join(STUDY_LATTICES)}, "
+                f"got {lattice!r}"
+            )
     if out["best"] and out["samples"] == 0:
         raise InputError(f"{path}: [rerun] best needs samples, more than [grid] samples")
     if bool(out["then_lattices"]) != bool(out["then_best"]):

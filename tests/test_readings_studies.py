@@ -163,6 +163,22 @@ def test_the_committed_page_is_made_again_from_its_table(tmp_path, name, table_r
         assert (tmp_path / "figures" / name / figure.name).stat().st_size > 10_000
 
 
+def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
+    """runner page takes a results study too (its tables in docs/<page>/): the
+    speed study's committed page, byte for byte, and its tables left as they were."""
+    before = {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()}
+    proc = subprocess.run(
+        [sys.executable, "-m", "runner", "page", "speed", "--out", str(tmp_path)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "speed.md").read_text() == (DOCS / "speed.md").read_text()
+    assert {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()} == before
+
+
 def test_the_default_scene_is_the_pick_of_the_committed_model_readings():
     """The rule's pick from the committed rows, every seed of each reading (the
     page's), is today's default reading."""

@@ -90,6 +90,10 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
             'kind = "scene_readings"\n[rerun]\nthen_lattices = ["triangular"]\n',
             "then_lattices and then_best go together",
         ),
+        (
+            'kind = "scene_readings"\n[rerun]\nthen_lattices = ["hexagonal"]\nthen_best = 1\n',
+            "[rerun] then_lattices must be among random, ",
+        ),
         ('[scene]\nwall = "hard"\n', "[scene] wall must be among 800_1ka_sides, "),
         ('[scene]\nmodel = ["first-read", "x"]\n', "[scene] model must be among first-read"),
         ('[scene]\nwall = "800_1ka_sides"\nn_wall = 1600\n', "gives wall and n_wall"),
