@@ -89,7 +89,7 @@ def claims_section(fits: dict) -> list[str]:
         "These verdicts are this study's reading of the model. Which reading of the model "
         "and the wall reproduces which fact, by how much, and what moves the facts no reading "
         'reproduces: docs/model.md, section 8, "The verdict, fact by fact" '
-        "(from `python bench/model_readings.py --from-csv --docs` and this page).",
+        "(from `python -m runner page model_readings` and this page).",
         "",
     ]
 

@@ -125,7 +125,8 @@ def wall_end_section(means: list[dict], wall_width: float) -> list[str]:
         "and bottom held) 1 of 12 contacts came near a side at 80.5 "
         "degrees, and the mean e moved by 0.026 to 0.034 at 63.5 to 80.5 degrees (0.9 to "
         "1.6 standard errors), beta by at most 0.011 (random lattice, 12 samples: "
-        "`python bench/wall_width.py`, docs/benchmarks/wall_width.md, docs/model.md). "
+        "`python bench/wall_width.py` at c9a6597, docs/model.md; docs/wall_width.md has "
+        "it with today's springs and held sides). "
         "The fits over the angles where at most 10 % of the contacts came near a side are "
         "among the fitting choices above (`angles` clear).",
         "",

@@ -244,6 +244,23 @@ def parser() -> OneLineParser:
 
     study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
     add_study_arguments(study)
+
+    page = commands.add_parser(
+        "page", help="a study's page in docs/ again from its committed tables, without its runs"
+    )
+    page.add_argument(
+        "preset",
+        metavar="STUDY",
+        type=study_argument,
+        help="a study file with a page (its tables in docs/<page>/)",
+    )
+    page.add_argument(
+        "--out",
+        type=OutFolder(lammps=False),
+        default=None,
+        help="write the page and its figures into this folder instead of docs/ "
+        "(a results page's tables too)",
+    )
     return parser
 
 
@@ -563,6 +580,8 @@ def main(argv: list[str] | None = None) -> int:
             results = [run_impact(spec, out, options_from_args(args))]
         elif args.command == "run":
             results = [run_scene(args.scene, options_from_args(args))]
+        elif args.command == "page":
+            return remake_page(args)
         else:
             with stop_on_signals():
                 return run_study_command(args)
@@ -650,9 +669,16 @@ def refuse_idle_options(args: argparse.Namespace) -> None:
 def run_study_command(args) -> int:
     """One study, or a study with axes: each of its combinations in turn,
     then their impacts.csv rows together in runs/<name>/impacts.csv."""
-    from .study import AXES, PRESETS
+    from analysis.kinds import READINGS_KINDS
+
+    from .readings_study import run_readings_study
+    from .study import AXES, PRESETS, STUDY_FILES
     from .study_file import axis_studies
 
+    described = STUDY_FILES[args.preset]
+    if described.kind in READINGS_KINDS:
+        cluster = cluster_from_args(args, runs_folder() / args.preset)
+        return run_readings_study(args, described, cluster)
     if args.preset not in AXES:
         return run_one_study(args)
     if args.docs or args.from_tables:
@@ -670,7 +696,7 @@ def run_study_command(args) -> int:
         )
     name = args.name or args.preset
     status = 0
-    subs = axis_studies(PRESETS[args.preset], AXES[args.preset], name)
+    subs = axis_studies(PRESETS[args.preset], AXES[args.preset], name, described.sweep)
     for sub in subs:
         PRESETS[sub.name] = sub
         print(f"{args.preset}: {sub.name}", flush=True)
@@ -683,6 +709,39 @@ def run_study_command(args) -> int:
     table = combine_tables([runs_folder() / sub.name for sub in subs], runs_folder() / name)
     print(f"{len(subs)} studies of {args.preset}; their impacts together in {shown(table)}")
     return status
+
+
+def remake_page(args) -> int:
+    """runner page: a study's page from its committed tables in docs/<page>/."""
+    from analysis.kinds import READINGS_KINDS
+    from analysis.report import report_from_tables
+
+    from .readings_study import remake_page as remake_readings_page
+    from .study import DOC_PAGES, PAGE_SECTIONS, READINGS, ROOT, STUDY_FILES
+
+    described = STUDY_FILES[args.preset]
+    if not described.page:
+        raise InputError(f"the {args.preset} study has no page in docs/ (its file's page)")
+    if described.kind in READINGS_KINDS:
+        page = remake_readings_page(args.preset, described, args.out)
+    else:
+        docs = ROOT / "docs"
+        tables = docs / DOC_PAGES[args.preset]
+        if not (tables / "study.json").is_file():
+            raise InputError(f"{args.preset}: {tables} holds no study's tables")
+        out = args.out / tables.name if args.out else tables
+        page = (args.out or docs) / f"{DOC_PAGES[args.preset]}.md"
+        readings = {n: docs / n for n in READINGS.get(args.preset, ())}
+        report_from_tables(
+            tables,
+            page,
+            preset=args.preset,
+            out=out,
+            readings={n: f for n, f in readings.items() if (f / "impacts.csv").is_file()},
+            sections=PAGE_SECTIONS.get(args.preset),
+        )
+    print(f"wrote {shown(page)}")
+    return 0
 
 
 def combine_tables(folders: list[Path], out: Path) -> Path:

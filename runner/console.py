@@ -4,6 +4,7 @@ point, the same as its `python -m` form.
     oblique-impact scene --lattice random --gamma 30 --out runs/example
     oblique-impact impact --gamma 30 --out runs/example
     oblique-impact study paper --docs
+    oblique-impact page scene_readings
     oblique-impact calibrate
     oblique-impact validate
     oblique-impact bench loop_floor --docs
@@ -22,6 +23,7 @@ COMMANDS = {
     "impact": ("runner.__main__", ["impact"], "build and run one impact, print its result"),
     "run": ("runner.__main__", ["run"], "run an existing scene folder"),
     "study": ("runner.__main__", ["study"], "a study file's study: runs, tables, page"),
+    "page": ("runner.__main__", ["page"], "a study's page again from its committed tables"),
     "calibrate": ("calibration.__main__", ["run"], "measure E, nu and c of every lattice"),
     "validate": ("reference.__main__", ["validate"], "LAMMPS against the reference integrator"),
     "bench": ("bench", [], "a benchmark of the tool: oblique-impact bench NAME [options]"),

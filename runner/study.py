@@ -507,6 +507,21 @@ def record_wall_clock(study: Study, seconds: float, counts: dict) -> None:
         path.write_text(json.dumps(info, indent=1))
 
 
+def machine() -> str:
+    """The machine and LAMMPS a page's numbers were measured on, and the date."""
+    import platform
+    import re
+    import subprocess
+    from datetime import date
+
+    lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout
+    version = re.search(r"LAMMPS - (.*?) -", lmp) or re.search(r"Simulator - (.*)\n", lmp)
+    return (
+        f"{cpu_name()}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, "
+        f"LAMMPS {version.group(1).strip() if version else 'unknown'}, {date.today()}"
+    )
+
+
 def cpu_name() -> str:
     for line in Path("/proc/cpuinfo").read_text().splitlines():
         if line.startswith("model name"):
@@ -533,6 +548,7 @@ def register(
     module's PRESETS, DOC_PAGES, AXES, READINGS, PAGE_SECTIONS)."""
     presets = PRESETS if presets is None else presets
     presets[name] = described.study
+    STUDY_FILES[name] = described
     for registry, value in (
         (DOC_PAGES if pages is None else pages, described.page),
         (AXES if axes is None else axes, described.axes),
@@ -548,6 +564,7 @@ def register(
 # those that run once per combination of some options' values, and the
 # readings (docs/<name>/ tables of the same study) that a page tabulates, and
 # the sections of the pages that do not have all (analysis.report.SECTIONS).
+STUDY_FILES: dict = {}  # what each study file of PRESETS says (runner.study_file.StudyFile)
 PRESETS, DOC_PAGES, AXES, READINGS, PAGE_SECTIONS = load_presets()
 
 

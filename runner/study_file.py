@@ -26,6 +26,23 @@ runs/<name>/impacts.csv (whose columns record every reading and run option).
 
     [scene]
     wall_ka = [1.0, 10.0]            # two studies: <name>_wall_ka-1, <name>_wall_ka-10
+
+``sweep = "one-at-a-time"`` instead of the default ``"cross"`` runs each axis's
+values with the other axes at their base, each axis's first value (a 1-D
+sweep around one point). ``[scene] wall = "1600_10ka_sides"`` and ``model =
+"disk-mass"`` name a reading of the wall and of the model
+(analysis.readings.WALLS, MODELS) instead of spelling out their options; a
+list of names is an axis too. ``kind`` picks the page (analysis.kinds: the
+default ``results``, or a readings study's page made from its table), and a
+readings study's ``[rerun]`` runs the best readings of the first pass again:
+
+    kind = "scene_readings"
+    [rerun]
+    best = 5                         # the 5 best readings by the page's rule
+    samples = 30                     # again, to 30 samples
+    default = false                  # and today's default reading with them
+    then_lattices = ["triangular"]   # then these disks ...
+    then_best = 3                    # ... on the 3 best (ranked again)
 """
 
 from __future__ import annotations
@@ -36,17 +53,26 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
+from analysis.kinds import KINDS, READINGS_KINDS
+from analysis.readings import NAMED
 from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
+from builder.materials import STUDY_LATTICES
 from builder.scene import ANGLE
 
 from .options import RunOptions
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
-SECTIONS = ("grid", "scene", "run")
+SECTIONS = ("grid", "scene", "run", "rerun")
 # Fields that take a list: the study's own axes.
 LISTS = ("lattices", "cot_gamma", "gamma_deg", "speeds")
+# The grid's numbers that may be an axis (a study each), besides every scene
+# and run option: v_n (unlike speeds, whose values share one study).
+GRID_AXES = ("vn",)
+SWEEPS = ("cross", "one-at-a-time")
+# [rerun]'s keys and their defaults.
+RERUN = {"best": 0, "samples": 0, "default": False, "then_lattices": [], "then_best": 0}
 
 
 def study_path(name_or_path: str) -> Path:
@@ -79,6 +105,10 @@ class StudyFile:
     axes: dict = field(default_factory=dict)
     readings: tuple[str, ...] = ()
     sections: tuple[str, ...] = ()  # of analysis.sections.SECTIONS; () for all
+    kind: str = "results"  # of analysis.kinds.KINDS
+    sweep: str = "cross"  # of SWEEPS
+    rerun: dict = field(default_factory=dict)  # [rerun], for a readings kind
+    named: dict = field(default_factory=dict)  # wall/model names given as one value
 
 
 def cot_of_degrees(degrees: float) -> float:
@@ -118,21 +148,30 @@ def read_study_file(path: Path) -> StudyFile:
         raise InputError(
             f"{path}: sections must be a list among {', '.join(PAGE_SECTIONS)}, got {sections!r}"
         )
+    kind = data.pop("kind", "results")
+    if kind not in KINDS:
+        raise InputError(f"{path}: kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    sweep = data.pop("sweep", "cross")
+    if sweep not in SWEEPS:
+        raise InputError(f"{path}: sweep must be one of {', '.join(SWEEPS)}, got {sweep!r}")
     unknown = set(data) - set(SECTIONS)
     if unknown:
         raise InputError(
             f"{path}: {sorted(unknown)[0]!r} is not a section; sections: {', '.join(SECTIONS)} "
-            "(and page)"
+            "(and page, readings, sections, kind, sweep)"
         )
+    if kind != "results" and (sections or readings):
+        raise InputError(f"{path}: sections and readings are a results page's, not a {kind} page's")
+    rerun = read_rerun(path, data.pop("rerun", {}), kind)
     study_fields = {f.name for f in fields(Study)} - {"name", "options"}
     allowed = {
         "grid": set(GRID),
-        "scene": study_fields - set(GRID),
+        "scene": (study_fields - set(GRID)) | set(NAMED),
         "run": {f.name for f in fields(RunOptions)},
     }
     values: dict = {}
     axes: dict = {}
-    for section in SECTIONS:
+    for section in ("grid", "scene", "run"):
         table = data.get(section, {})
         if not isinstance(table, dict):
             raise InputError(f"{path}: [{section}] must be a table of options")
@@ -144,8 +183,13 @@ def read_study_file(path: Path) -> StudyFile:
                 )
             if key in LISTS and not isinstance(value, list):
                 raise InputError(f"{path}: [{section}] {key} must be a list, got {value!r}")
+            for name in value if isinstance(value, list) and key in NAMED else [value]:
+                if key in NAMED and name not in NAMED[key]:
+                    raise InputError(
+                        f"{path}: [scene] {key} must be among {', '.join(NAMED[key])}, got {name!r}"
+                    )
             if isinstance(value, list) and key not in LISTS:
-                if section == "grid":
+                if section == "grid" and key not in GRID_AXES:
                     raise InputError(f"{path}: [grid] {key} must be one value, got {value!r}")
                 words = [axis_word(v) for v in value]
                 if not value or len(set(words)) != len(value):
@@ -156,6 +200,16 @@ def read_study_file(path: Path) -> StudyFile:
                 axes[(section, key)] = tuple(value)
                 value = value[0]
             values[(section, key)] = value
+    named = {k: values.pop(("scene", k)) for k in NAMED if ("scene", k) in values}
+    for key, name in named.items():  # a named reading is its options
+        for option, value in NAMED[key][name].items():
+            if ("scene", option) in values:
+                raise InputError(
+                    f"{path}: [scene] gives {key} and {option}, which it sets; give one"
+                )
+            values[("scene", option)] = value
+    if sweep != "cross" and not axes:
+        raise InputError(f"{path}: sweep {sweep!r} needs axes (an option given a list)")
     grid = {k: v for (s, k), v in values.items() if s != "run"}
     if "gamma_deg" in grid:
         if "cot_gamma" in grid:
@@ -178,7 +232,57 @@ def read_study_file(path: Path) -> StudyFile:
     axes = {key: values for (section, key), values in axes.items()}
     if sections and study.speeds:
         raise InputError(f"{path}: sections are a results page's; a study of speeds has its own")
-    return StudyFile(study, page, axes, tuple(readings), tuple(sections))
+    named = {k: v for k, v in named.items() if k not in axes}
+    if rerun.get("best") and rerun["samples"] <= study.samples:
+        raise InputError(
+            f"{path}: [rerun] samples must be more than [grid] samples ({study.samples}), "
+            f"got {rerun['samples']}"
+        )
+    return StudyFile(study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named)
+
+
+def read_rerun(path: Path, table, kind: str) -> dict:
+    """[rerun]'s keys, checked (a readings kind's, whose page ranks its readings)."""
+    if not table:
+        return {}
+    if not isinstance(table, dict):
+        raise InputError(f"{path}: [rerun] must be a table of {', '.join(RERUN)}")
+    if kind not in READINGS_KINDS:
+        raise InputError(f"{path}: [rerun] ranks a readings study's readings: give its kind")
+    for key, value in table.items():
+        if key not in RERUN:
+            raise InputError(f"{path}: [rerun] has no option {key!r}; options: {', '.join(RERUN)}")
+        wanted = type(RERUN[key])
+        if type(value) is not wanted or (wanted is int and value < 0):
+            raise InputError(
+                f"{path}: [rerun] {key} must be {'a count' if wanted is int else wanted.__name__}"
+                f", got {value!r}"
+            )
+    out = {**RERUN, **table}
+    for lattice in out["then_lattices"]:  # refused now, not after the first pass's hours
+        if lattice not in STUDY_LATTICES:
+            raise InputError(
+                f"{path}: [rerun] then_lattices must be among {', '.join(STUDY_LATTICES)}, "
+                f"got {lattice!r}"
+            )
+    if out["best"] and out["samples"] == 0:
+        raise InputError(f"{path}: [rerun] best needs samples, more than [grid] samples")
+    if bool(out["then_lattices"]) != bool(out["then_best"]):
+        raise InputError(f"{path}: [rerun] then_lattices and then_best go together")
+    return out
+
+
+def combinations(axes: dict[str, tuple], sweep: str = "cross") -> list[dict]:
+    """The axes' combinations, option -> value: every one (``cross``), or
+    (``one-at-a-time``) each axis's values with the others at their first
+    value, the base, which comes first and once."""
+    if sweep == "cross":
+        return [dict(zip(axes, c)) for c in itertools.product(*axes.values())]
+    base = {key: values[0] for key, values in axes.items()}
+    out = [base]
+    for key, values in axes.items():
+        out += [{**base, key: value} for value in values[1:]]
+    return out
 
 
 def axis_word(value) -> str:
@@ -186,9 +290,12 @@ def axis_word(value) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
-def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list:
+def axis_studies(
+    study, axes: dict[str, tuple], name: str | None = None, sweep: str = "cross"
+) -> list:
     """The study once for every combination of the axes' values (a scene
-    option or a run option each), named <name>_<option>-<value>...
+    option, a named reading or a run option each; ``combinations``), named
+    <name>_<option>-<value>...
 
     Raises
     ------
@@ -198,10 +305,13 @@ def axis_studies(study, axes: dict[str, tuple], name: str | None = None) -> list
     run_fields = {f.name for f in fields(RunOptions)}
     name = name or study.name
     out = []
-    for combination in itertools.product(*axes.values()):
+    for combination in combinations(axes, sweep):
         scene, run, words = {}, {}, []
-        for key, value in zip(axes, combination):
-            (run if key in run_fields else scene)[key] = value
+        for key, value in combination.items():
+            if key in NAMED:
+                scene.update(NAMED[key][value])
+            else:
+                (run if key in run_fields else scene)[key] = value
             words.append(f"{key}-{axis_word(value)}")
         sub = replace(
             study, name="_".join([name, *words]), options=replace(study.options, **run), **scene
@@ -222,9 +332,19 @@ def study_file_text(described: StudyFile) -> str:
         lines.append(f"readings = {toml_value(list(described.readings))}")
     if described.sections:
         lines.append(f"sections = {toml_value(list(described.sections))}")
-    sections = {"grid": [], "scene": [], "run": []}
+    if described.kind != "results":
+        lines.append(f"kind = {toml_value(described.kind)}")
+    if described.sweep != "cross":
+        lines.append(f"sweep = {toml_value(described.sweep)}")
+    sections = {"grid": [], "scene": [], "run": [], "rerun": []}
+    # a named reading (given, or an axis) stands for the options it sets
+    named = {k: described.named.get(k, axes.get(k)) for k in NAMED}
+    named = {k: v for k, v in named.items() if v is not None}
+    covered = {o for k, v in named.items() for o in NAMED[k][v if isinstance(v, str) else v[0]]}
+    for key, value in named.items():
+        sections["scene"].append(f"{key} = {toml_value(value)}")
     for option in fields(Study):
-        if option.name in ("name", "options"):
+        if option.name in ("name", "options") or option.name in covered:
             continue
         value = axes.get(option.name, getattr(study, option.name))
         if option.name in axes or value != getattr(default, option.name):
@@ -234,6 +354,7 @@ def study_file_text(described: StudyFile) -> str:
         value = axes.get(option.name, getattr(study.options, option.name))
         if option.name in axes or value != getattr(run_default, option.name):
             sections["run"].append(f"{option.name} = {toml_value(value)}")
+    sections["rerun"] = [f"{k} = {toml_value(v)}" for k, v in described.rerun.items()]
     for section, body in sections.items():
         if body:
             lines += ["", f"[{section}]", *body]

@@ -103,6 +103,7 @@ ENTRY_POINTS = [
             "impact": ["impact", "--out", "{out}"],
             "run": ["run", "{scene}"],
             "study": ["study", "demo", "--name", "bad_input_probe"],
+            "page": ["page", "speed", "--out", "{out}"],
         },
     ),
     EntryPoint(

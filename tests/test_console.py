@@ -21,6 +21,7 @@ SAME = [
     (["scene", "--gamma", "95"], ["-m", "builder", "scene", "--gamma", "95"]),
     (["impact", "--dt", "0"], ["-m", "runner", "impact", "--dt", "0"]),
     (["study", "no-such-study"], ["-m", "runner", "study", "no-such-study"]),
+    (["page", "demo"], ["-m", "runner", "page", "demo"]),
     (["calibrate", "--seeds", "0"], ["-m", "calibration", "run", "--seeds", "0"]),
     (["validate", "--out", "/proc/x"], ["-m", "reference", "validate", "--out", "/proc/x"]),
     (["bench", "loop_floor", "--repeats", "0"], ["-m", "bench.loop_floor", "--repeats", "0"]),

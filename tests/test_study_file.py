@@ -13,7 +13,7 @@ from builder.errors import InputError
 from runner.options import RunOptions
 from runner.study import DOC_PAGES, PRESETS, Study
 from runner.study_file import STUDIES, read_study_file, study_file_text, study_path
-from tests.helpers import ROOT
+from tests.helpers import ROOT, RUNS
 
 
 @pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
@@ -72,6 +72,32 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ('page = "p"\nreadings = "x"\n', "readings must be a list"),
         ('sections = ["fits", "no-such-section"]\n', "sections must be a list among"),
         ('sections = ["fits"]\n[grid]\nspeeds = [0.1, 0.2]\n', "a study of speeds has its own"),
+        ('sweep = "diagonal"\n[scene]\nwall_ka = [1.0, 2.0]\n', "sweep must be one of cross, one-"),
+        ("sweep = 1\n", "sweep must be one of cross, one-at-a-time, got 1"),
+        ('sweep = "one-at-a-time"\n', "sweep 'one-at-a-time' needs axes"),
+        ('kind = "poster"\n', "kind must be one of results, scene_readings"),
+        ('kind = "scene_readings"\nsections = ["fits"]\n', "sections and readings are a results"),
+        ("[rerun]\nbest = 2\nsamples = 30\n", "[rerun] ranks a readings study's readings"),
+        ('kind = "model_readings"\n[rerun]\nbest = 2\n', "[rerun] best needs samples"),
+        ('kind = "model_readings"\n[rerun]\ntop = 2\n', "[rerun] has no option 'top'"),
+        ('kind = "model_readings"\n[rerun]\nbest = -1\n', "[rerun] best must be a count"),
+        ('kind = "model_readings"\n[rerun]\ndefault = 1\n', "[rerun] default must be bool"),
+        (
+            'kind = "model_readings"\n[grid]\nsamples = 12\n[rerun]\nbest = 2\nsamples = 12\n',
+            "[rerun] samples must be more than [grid] samples \\(12\\), got 12",
+        ),
+        (
+            'kind = "scene_readings"\n[rerun]\nthen_lattices = ["triangular"]\n',
+            "then_lattices and then_best go together",
+        ),
+        (
+            'kind = "scene_readings"\n[rerun]\nthen_lattices = ["hexagonal"]\nthen_best = 1\n',
+            "[rerun] then_lattices must be among random, ",
+        ),
+        ('[scene]\nwall = "hard"\n', "[scene] wall must be among 800_1ka_sides, "),
+        ('[scene]\nmodel = ["first-read", "x"]\n', "[scene] model must be among first-read"),
+        ('[scene]\nwall = "800_1ka_sides"\nn_wall = 1600\n', "gives wall and n_wall"),
+        ("[grid]\nvn = []\n", "an axis needs values distinct"),
     ],
 )
 def test_a_bad_file_is_refused_naming_it(tmp_path, text, message):
@@ -79,6 +105,62 @@ def test_a_bad_file_is_refused_naming_it(tmp_path, text, message):
     path.write_text(text)
     with pytest.raises(InputError, match="bad.toml: .*" + message.replace("[", r"\[")):
         read_study_file(path)
+
+
+def test_one_at_a_time_sweeps_each_axis_around_the_base(tmp_path):
+    """sweep = "one-at-a-time": the base (each axis's first value) once, then
+    each axis's other values with the others at the base; not the cross."""
+    from runner.study_file import axis_studies
+
+    path = tmp_path / "line.toml"
+    path.write_text(
+        'sweep = "one-at-a-time"\n[grid]\nvn = [0.1, 0.05, 0.2]\n'
+        "[scene]\nroughness = [0.03, 0.06]\n[run]\ndt = [0.008, 0.004]\n"
+    )
+    described = read_study_file(path)
+    assert described.sweep == "one-at-a-time"
+    subs = axis_studies(described.study, described.axes, sweep=described.sweep)
+    found = [(s.vn, s.roughness, s.options.dt) for s in subs]
+    assert found == [
+        (0.1, 0.03, 0.008),
+        (0.05, 0.03, 0.008),
+        (0.2, 0.03, 0.008),
+        (0.1, 0.06, 0.008),
+        (0.1, 0.03, 0.004),
+    ]
+    assert subs[1].name == "line_vn-0.05_roughness-0.03_dt-0.008"
+    crossed = axis_studies(described.study, described.axes)
+    assert len(crossed) == 3 * 2 * 2
+
+
+def test_a_named_reading_is_its_options(tmp_path):
+    """wall = and model = name the readings of analysis.readings: the study
+    has their options, and a list of names is an axis."""
+    from analysis.readings import MODELS, WALLS
+    from runner.study_file import axis_studies
+
+    path = tmp_path / "named.toml"
+    path.write_text(
+        '[scene]\nwall = "density_same-c_sides-bottom"\nmodel = ["first-read", "disk-mass"]\n'
+    )
+    described = read_study_file(path)
+    assert described.named == {"wall": "density_same-c_sides-bottom"}
+    assert described.axes == {"model": ("first-read", "disk-mass")}
+    subs = axis_studies(described.study, described.axes)
+    for sub, model in zip(subs, ("first-read", "disk-mass"), strict=True):
+        assert (sub.n_wall, sub.wall_ka, sub.wall_fixed) == ("density", "same-c", "sides+bottom")
+        assert sub.contact_mass == MODELS[model]["contact_mass"]
+    assert WALLS["density_same-c_sides-bottom"]["wall_fixed"] == "sides+bottom"
+
+
+def test_a_bad_sweep_is_refused_on_the_command_line_in_one_line(tmp_path):
+    bad = tmp_path / "bad_sweep.toml"
+    bad.write_text('sweep = "diagonal"\n[scene]\nwall_ka = [1.0, 2.0]\n')
+    proc = run_study_command(str(bad))
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 1, proc.stderr
+    assert "bad_sweep.toml: sweep must be one of cross, one-at-a-time, got 'diagonal'" in lines[0]
+    assert not (RUNS / "bad_sweep").exists()
 
 
 def test_a_name_is_a_file_in_studies():

@@ -1,70 +1,37 @@
-"""The readings of the scene side by side (MODEL.md section 8).
-
-    python bench/scene_readings.py [--samples 6] [--angles 8] [--workers 2]
-                                   [--top 0 [--top-samples 30]] [--docs | --out FOLDER]
-    python bench/scene_readings.py --from-csv [--docs | --out FOLDER]
-                                   # the page from the committed rows only
-
-Every reading of the wall, points (800, 1,600, the disk's density) x springs
-(the disk's ka, 10 times it, the ka that gives the wall the disk's wave
-speed) x held points (the sides; the sides and the bottom), is a study of
-the random disk (runner/study.py: resumable, failures recorded) in
-runs/scene_readings/<reading>/. Then the triangular disk runs on the three
-readings that agree best with the paper's facts. Killed, it resumes where it
-stopped.
+"""The readings of the wall side by side against the paper's facts
+(MODEL.md section 8; studies/scene_readings.toml, docs/scene_readings.md).
 
 Per reading: mean e in three bands of cot gamma with standard errors, Walton's
 mu and beta0 with chi2/dof, the median first-to-last contact time and number
 of separate touches, the share of contacts within 1 R of a fixed side,
 failures by cause, LAMMPS seconds and steps per impact; how far each reading
 misses each of the paper's three facts, and the ranking that picks the
-default. Writes scene_readings.md, scene_readings.png and scene_readings.csv
-(one row per impact, what the page is made from) into runs/bench/, with
---docs into docs/benchmarks/ (the committed ones), with --out into FOLDER.
---from-csv reads the committed docs/benchmarks/scene_readings.csv.
+default (``rank``, which the study's re-run of the best also follows).
 """
 
 from __future__ import annotations
 
-import argparse
 import itertools
-import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from analysis.fits import Means, fit_walton, reduced_chi2
-from analysis.table import NEAR_SIDE, mean_rows, write_csv
-from analysis.theory import walton_beta
-from bench.common import (
-    DOCS,
-    bench_parser,
+from .fits import Means, fit_walton, reduced_chi2
+from .readings import (
+    N_WALL,
+    WALL_FIXED,
+    WALL_KA,
+    Setup,
+    distance_from_text,
     markdown_table,
-    page_folder,
-    read_rows_csv,
-    refuse,
-    study_rows,
-    write_report,
+    wall_label,
 )
-from builder.checks import Range
-from builder.errors import InputError
-from builder.scene import FIRST_READING
-from runner.clusters import WORKERS
-from runner.driver import run_study
-from runner.options import RunOptions
-from runner.study import ANGLES, SAMPLES, Study, runs_folder
+from .table import NEAR_SIDE, mean_rows
+from .theory import walton_beta
 
-RUNS = runs_folder() / "scene_readings"
-# The committed rows, which --from-csv reads; a run writes its own next to its page.
-ROWS_CSV = DOCS / "scene_readings.csv"
-FIGURE_NAME = "scene_readings.png"
-
-N_WALL = (800, 1600, "density")
-WALL_KA = (1.0, 10.0, "same-c")
-WALL_FIXED = ("sides", "sides+bottom")
-# The paper's sentence read literally (MODEL.md section 1): the tie-breaker.
-LITERAL = (800, 1.0, "sides")
+TITLE = "The readings of the scene"
+FIGURE = "scene_readings.png"
+NUMBER_WORDS = ("no", "one", "two", "three", "four", "five", "six")
 
 # The paper's three facts (MODEL.md section 8) and how near counts as agreeing:
 # e near 0.8 (its Walton fit fixes e = 0.8), beta0 near 0.56, and no contact
@@ -74,7 +41,7 @@ E_PAPER, E_NEAR = 0.8, 0.1
 BETA0_PAPER, BETA0_NEAR = 0.56, 0.2
 ENDS_NEAR = 0.1
 BANDS = ((">= 2", 2.0, np.inf), ("0.5-2", 0.5, 2.0), ("< 0.5", 0.0, 0.5))
-KEEP_COLUMNS = (
+COLUMNS = (
     "reading",
     "study_lattice",
     "seed",
@@ -96,52 +63,6 @@ KEEP_COLUMNS = (
     "nu",
     "error",
 )
-
-
-# The settings the committed table was run with: a step safe for every reading
-# (the stiffest walls have ten times the disk's ka), the springs of the time.
-RUN_OPTIONS = RunOptions(dt=0.004, every=25, check=100, springs="class2", route="python")
-
-
-@dataclass
-class ReadingStudy(Study):
-    """A study whose folder is runs/scene_readings/<reading>."""
-
-    @property
-    def folder(self) -> Path:
-        return RUNS / self.name
-
-
-def label(n_wall, wall_ka, wall_fixed) -> str:
-    ka = wall_ka if isinstance(wall_ka, str) else f"{wall_ka:g}ka"
-    return f"{n_wall}_{ka}_{wall_fixed.replace('+', '-')}"
-
-
-def readings() -> list[tuple]:
-    return list(itertools.product(N_WALL, WALL_KA, WALL_FIXED))
-
-
-TOP = Range(0, len(readings()), integer=True)
-
-
-def distance_from_text(reading: tuple) -> int:
-    return sum(a != b for a, b in zip(reading, LITERAL))
-
-
-def study_for(reading: tuple, lattice: str, args, samples: int | None = None) -> ReadingStudy:
-    n_wall, wall_ka, wall_fixed = reading
-    name = label(*reading) + ("" if lattice == "random" else f"_{lattice}")
-    return ReadingStudy(
-        name,
-        lattices=(lattice,),
-        angles=args.angles,
-        samples=samples or args.samples,
-        options=RUN_OPTIONS,
-        n_wall=n_wall,
-        wall_ka=wall_ka,
-        wall_fixed=wall_fixed,
-        **FIRST_READING,  # the model's reading the committed table was made on
-    )
 
 
 def angle_groups(rows: list[dict]) -> list[np.ndarray]:
@@ -250,7 +171,7 @@ def summarise(rows: list[dict]) -> dict:
     return out
 
 
-def rank(summaries: dict) -> list[tuple]:
+def rank_summaries(summaries: dict) -> list[str]:
     """Readings from best to worst by their total miss of the paper's facts.
 
     The best is the reading of least total miss, unless a reading closer to
@@ -283,15 +204,13 @@ def fmt(pair) -> str:
     return "-" if not np.isfinite(value) else f"{value:.3f} +- {se:.3f}"
 
 
-def table_row(reading: tuple, lattice: str, s: dict) -> list[str]:
+def table_row(reading: str, lattice: str, s: dict) -> list[str]:
     walton = s.get("walton")
     causes = "; ".join(f"{n} {c}" for c, n in sorted(s["causes"].items())) or "-"
     if "total_miss" not in s:
-        return (
-            [label(*reading), lattice, str(s["impacts"]), str(s["failed"])] + ["-"] * 13 + [causes]
-        )
+        return [reading, lattice, str(s["impacts"]), str(s["failed"])] + ["-"] * 13 + [causes]
     return [
-        label(*reading),
+        reading,
         lattice,
         str(s["impacts"]),
         str(s["failed"]),
@@ -323,7 +242,7 @@ def draw(rows: list[dict], path: Path) -> None:
     styles = dict(zip(WALL_FIXED, ("-", "--")))
     for i, n_wall in enumerate(N_WALL):
         for wall_ka, wall_fixed in itertools.product(WALL_KA, WALL_FIXED):
-            name = label(n_wall, wall_ka, wall_fixed)
+            name = wall_label(n_wall, wall_ka, wall_fixed)
             done = [
                 r
                 for r in rows
@@ -361,18 +280,35 @@ def draw(rows: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
-def page(rows: list[dict], args) -> str:
-    summaries: dict[tuple, dict] = {}
-    for reading in readings():
-        summaries[reading] = summarise(
-            [r for r in rows if r["reading"] == label(*reading) and r["study_lattice"] == "random"]
+def label(choice: dict) -> str:
+    """A combination's reading: its wall's name, ``points_ka_held``."""
+    return wall_label(choice["n_wall"], choice["wall_ka"], choice["wall_fixed"])
+
+
+def summaries_of(rows: list[dict], labels: list[str], lattice: str = "random") -> dict:
+    return {
+        reading: summarise(
+            [r for r in rows if r["reading"] == reading and r["study_lattice"] == lattice]
         )
-    ranking = rank(summaries)
-    more = (
-        f" ({args.top} best readings of that first pass to {args.top_samples} samples)"
-        if args.top
-        else ""
-    )
+        for reading in labels
+    }
+
+
+def rank(rows: list[dict], setup: Setup) -> list[str]:
+    """The random-disk readings from best to worst by the rule."""
+    return rank_summaries(summaries_of(rows, [label(c) for c in setup.choices]))
+
+
+def page(rows: list[dict], setup: Setup, figures: Path) -> str:
+    """The page's body; its figure goes into ``figures``."""
+    labels = [label(c) for c in setup.choices]
+    summaries = summaries_of(rows, labels)
+    ranking = rank_summaries(summaries)
+    study, rerun = setup.study, setup.rerun
+    top, top_samples = rerun.get("best", 0), rerun.get("samples")
+    then = rerun.get("then_lattices", ())
+    then_best = rerun.get("then_best", 0)
+    more = f" ({top} best readings of that first pass to {top_samples} samples)" if top else ""
     header = [
         "reading (points_ka_held)",
         "disk",
@@ -393,28 +329,29 @@ def page(rows: list[dict], args) -> str:
         "total miss",
         "failures by cause",
     ]
-    table = [table_row(r, "random", summaries[r]) for r in readings()]
-    triangular = []
-    for reading in ranking[:3]:
-        tri = [
-            r
-            for r in rows
-            if r["reading"] == label(*reading) and r["study_lattice"] == "triangular"
-        ]
-        if tri:
-            triangular.append(table_row(reading, "triangular", summarise(tri)))
+    table = [table_row(r, "random", summaries[r]) for r in labels]
+    for lattice in then:
+        for reading in ranking[:then_best]:
+            these = [r for r in rows if r["reading"] == reading and r["study_lattice"] == lattice]
+            if these:
+                table.append(table_row(reading, lattice, summarise(these)))
     order = "\n".join(
-        f"{i + 1}. `{label(*r)}`: total miss {summaries[r]['total_miss']:.2f} +- "
+        f"{i + 1}. `{r}`: total miss {summaries[r]['total_miss']:.2f} +- "
         f"{summaries[r]['total_miss_se']:.2f}, {summaries[r]['facts_met']} facts met, "
         f"{distance_from_text(r)} choice(s) away from the paper's text"
         for i, r in enumerate(ranking)
     )
+    draw(rows, figures / FIGURE)
+    options = study["options"]
+    then_text = "".join(
+        f"then the {lattice} disk on the {NUMBER_WORDS[then_best]} best readings"
+        for lattice in then
+    )
     return (
-        f"Random disk (800 points), {args.angles} angles from 5.7 to 80.5 degrees x {args.samples} "
-        f"samples (seeds 1 on) per reading{more}, v_n = 0.1 c, velocity Verlet at dt = "
-        f"{RUN_OPTIONS.dt:g} R/c with `{RUN_OPTIONS.springs}` springs (a step safe for every "
-        "reading); then the "
-        "triangular disk on the three best readings. A reading is `points_ka_held`: the wall's "
+        f"Random disk (800 points), {study['angles']} angles from 5.7 to 80.5 degrees x "
+        f"{study['samples']} samples (seeds 1 on) per reading{more}, v_n = 0.1 c, velocity Verlet "
+        f"at dt = {options['dt']:g} R/c with `{options['springs']}` springs (a step safe for "
+        f"every reading); {then_text}. A reading is `points_ka_held`: the wall's "
         "points (800, 1600, or the disk's number `density`), its spring constant over the "
         "disk's (`1ka`, `10ka`, or `same-c`, the disk's wave speed), the points held (`sides`, "
         "`sides-bottom`). LAMMPS s and steps are medians per impact, measured while other jobs "
@@ -431,142 +368,10 @@ def page(rows: list[dict], args) -> str:
         "8): the default is the reading of least total miss; where another agrees as well (its "
         "total miss within one combined standard error of the least), the one with the fewest "
         "choices away from the paper's text (800 points, one ka, the sides held).\n\n"
-        + markdown_table(header, table + triangular)
+        + markdown_table(header, table)
         + "\n\nRanking of the random-disk readings:\n\n"
         + order
-        + "\n\n![e and beta against cot gamma per reading](scene_readings.png)\n\n"
-        "One row per impact: `scene_readings.csv` (`python bench/scene_readings.py --from-csv "
-        "--docs` rebuilds this page and the figure from it).\n"
+        + f"\n\n![e and beta against cot gamma per reading]({setup.figures}/{FIGURE})\n\n"
+        f"One row per impact: `{study['name']}/rows.csv` (`python -m runner page "
+        f"{study['name']}` rebuilds this page and the figure from it).\n"
     )
-
-
-def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__, out="the page, figure and rows")
-    # None: not given (--from-csv takes them from its rows, and refuses them)
-    parser.add_argument(
-        "--samples",
-        type=SAMPLES,
-        default=None,
-        help=f"samples per angle, {SAMPLES.describe()} (default: 6)",
-    )
-    parser.add_argument(
-        "--angles", type=ANGLES, default=None, help=f"angles, {ANGLES.describe()} (default: 8)"
-    )
-    parser.add_argument(
-        "--workers",
-        type=WORKERS,
-        default=None,
-        help=f"worker processes, {WORKERS.describe()} (default: 2)",
-    )
-    parser.add_argument(
-        "--from-csv",
-        action="store_true",
-        help=f"only rebuild the page and figure from the committed {ROWS_CSV.name}",
-    )
-    parser.add_argument(
-        "--top",
-        type=TOP,
-        default=None,
-        help=f"then run the best TOP readings to --top-samples, {TOP.describe()} (default: 0)",
-    )
-    parser.add_argument(
-        "--top-samples",
-        type=SAMPLES,
-        default=None,
-        help=f"samples of the best readings, {SAMPLES.describe()}, more than --samples "
-        "(default: 30)",
-    )
-    return parser
-
-
-def check(args: argparse.Namespace) -> None:
-    """Refuse options that do not apply together; fill in the defaults."""
-    run_size = ("samples", "angles", "workers", "top", "top_samples")
-    if args.from_csv:
-        given = [name for name in run_size if getattr(args, name) is not None]
-        if given:
-            option = "--" + given[0].replace("_", "-")
-            raise InputError(f"{option} does not apply with --from-csv (its rows give the size)")
-        if not ROWS_CSV.is_file():
-            raise InputError(f"--from-csv: {ROWS_CSV} is missing")
-        return
-    if args.top_samples is not None and not args.top:
-        raise InputError("--top-samples applies with --top 1 or more only")
-    args.samples = 6 if args.samples is None else args.samples
-    args.angles = 8 if args.angles is None else args.angles
-    args.workers = 2 if args.workers is None else args.workers
-    args.top = args.top or 0
-    args.top_samples = 30 if args.top_samples is None else args.top_samples
-    if args.top and args.top_samples <= args.samples:
-        raise InputError(
-            f"--top-samples must be more than --samples ({args.samples}), got {args.top_samples}"
-        )
-    # every study of the run, before the first one starts
-    for reading in readings():
-        for lattice in ("random", "triangular"):
-            study_for(reading, lattice, args).validate()
-        if args.top:
-            study_for(reading, "random", args, args.top_samples).validate()
-
-
-def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
-    try:
-        check(args)
-    except InputError as error:
-        return refuse(__file__, error)
-    folder = page_folder(args)
-    folder.mkdir(parents=True, exist_ok=True)
-
-    if args.from_csv:
-        rows = read_rows_csv(ROWS_CSV)
-        # the run's size, from its rows
-        args.angles = len({r["gamma_deg"] for r in rows})
-        most = {}
-        for r in rows:
-            if r["study_lattice"] == "random":
-                most[r["reading"]] = max(most.get(r["reading"], 0), int(r["seed"]))
-        args.samples = min(most.values())
-        args.top_samples = max(most.values())
-        args.top = sum(n > args.samples for n in most.values())
-    else:
-        rows = []
-        for reading in readings():
-            study = study_for(reading, "random", args)
-            run_study(study, args.workers)
-            rows += study_rows(study, label(*reading))
-
-        def summaries() -> dict:
-            return {
-                r: summarise([x for x in rows if x["reading"] == label(*r)]) for r in readings()
-            }
-
-        # the close ones again, with more samples: their order rests on beta0's
-        # bootstrap spread, which the sample count sets
-        for reading in rank(summaries())[: args.top]:
-            study = study_for(reading, "random", args, args.top_samples)
-            run_study(study, args.workers)
-            rows = [x for x in rows if x["reading"] != label(*reading)] + study_rows(
-                study, label(*reading)
-            )
-        for reading in rank(summaries())[:3]:
-            study = study_for(reading, "triangular", args)
-            run_study(study, args.workers)
-            rows += study_rows(study, label(*reading))
-        write_csv(rows, folder / ROWS_CSV.name, KEEP_COLUMNS)
-    draw(rows, folder / FIGURE_NAME)
-    body = page(rows, args)
-    print(body)
-    command = f"python bench/scene_readings.py --samples {args.samples} --angles {args.angles}"
-    if args.top:
-        command += f" --top {args.top} --top-samples {args.top_samples}"
-    # the committed rows, which --from-csv reads, are written by --docs only
-    if args.docs or args.from_csv:
-        command += " --docs"
-    path = write_report("scene_readings", "The readings of the scene", command, body, folder=folder)
-    print(f"wrote {path}")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,0 +1,153 @@
+"""The readings of the scene by name (MODEL.md section 8), and the rows, table
+and page frame that the readings studies share (studies/scene_readings.toml,
+model_readings.toml, fact_sensitivity.toml; their pages: analysis.kinds).
+
+A study file names a wall (``wall = "1600_10ka_sides"``: points, ka over the
+random disk's, held) and a reading of the model (``model = "disk-mass"``:
+the choices changed from the first reading) instead of spelling out their
+options; a list of names is an axis like a list of values.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from builder.scene import FIRST_READING
+
+from .render import render
+from .sections import failure_cause
+
+N_WALL = (800, 1600, "density")
+WALL_KA = (1.0, 10.0, "same-c")
+WALL_FIXED = ("sides", "sides+bottom")
+
+
+def wall_label(n_wall, wall_ka, wall_fixed: str) -> str:
+    """A wall as the pages name it: ``points_ka_held`` (``800_1ka_sides``)."""
+    ka = wall_ka if isinstance(wall_ka, str) else f"{wall_ka:g}ka"
+    return f"{n_wall}_{ka}_{wall_fixed.replace('+', '-')}"
+
+
+# Every reading of the wall, in the order of the scene readings' table.
+WALLS = {
+    wall_label(*w): dict(zip(("n_wall", "wall_ka", "wall_fixed"), w))
+    for w in itertools.product(N_WALL, WALL_KA, WALL_FIXED)
+}
+# The readings of the model: the first reading, one choice changed at a time,
+# and the pair the issue's trials point at (the disk's mass moved mu most; a
+# regular disk with its own surface is the construction that could make it slip).
+MODEL_CHANGES = {
+    "first-read": {},
+    "disk-mass": {"contact_mass": "disk"},
+    "spring-speed": {"speed_unit": "spring"},
+    "both-directions": {"roughness_direction": "both"},
+    "random-row": {"surface_row": "random"},
+    "lattice-surface": {"regular_surface": "lattice"},
+    "disk-mass+lattice-surface": {"contact_mass": "disk", "regular_surface": "lattice"},
+}
+# Relative to the first reading, not to today's default.
+MODELS = {name: {**FIRST_READING, **change} for name, change in MODEL_CHANGES.items()}
+# The named readings a study file's [scene] may give, by key.
+NAMED = {"wall": WALLS, "model": MODELS}
+
+# Choices that depart from the paper's text, for the rules' tie-break: its
+# sentence (800 points, one ka, the sides held), its c, its "displaced along
+# the normal" and its triangular disk whose "surface is the random one's".
+# "The mass of the particle" reads either way, as does the even row.
+TEXT = {"n_wall": 800, "wall_ka": 1.0, "wall_fixed": "sides"}
+DEPARTS = {"speed_unit": "spring", "roughness_direction": "both", "regular_surface": "lattice"}
+
+
+def distance_from_text(wall: str, model: str = "first-read") -> int:
+    """How many of a reading's choices depart from the paper's text."""
+    return sum(WALLS[wall][k] != v for k, v in TEXT.items()) + sum(
+        MODEL_CHANGES[model].get(k) == v for k, v in DEPARTS.items()
+    )
+
+
+def named_reading(options: dict) -> dict[str, str]:
+    """The wall and model names whose options ``options`` has (those it has)."""
+    out = {}
+    for key, names in NAMED.items():
+        for name, values in names.items():
+            if all(options.get(k) == v for k, v in values.items()):
+                out[key] = name
+                break
+    return out
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What a readings page is made from besides its rows: the study's grid
+    (angles, samples, run options, as study.json records them), its
+    combinations in the file's order (each option -> value or name), the
+    named readings the file gives outside its axes, the re-run of the best,
+    and the record of the run (command, machine, and what the kind keeps)."""
+
+    study: dict
+    choices: tuple[dict, ...]
+    named: dict = field(default_factory=dict)
+    rerun: dict = field(default_factory=dict)
+    record: dict = field(default_factory=dict)
+    figures: str = "."  # the figures' folder, relative to the page
+
+
+def study_rows(study, name: str) -> list[dict]:
+    """Rows of a study's impacts, finished (impacts.csv's) and failed (their
+    cause), each marked as reading ``name``: what a readings table keeps."""
+    from .report import read_failure
+    from .table import collect
+
+    jobs = study.jobs()
+    rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
+    for job in jobs:
+        if (Path(job["folder"]) / "failed.json").exists():
+            rows.append(
+                {
+                    "study_lattice": job["lattice"],
+                    "lattice": job["lattice"],
+                    "seed": job["seed"],
+                    "gamma_deg": job["gamma"],
+                    "error": failure_cause(read_failure(job)["error"]),
+                }
+            )
+    for row in rows:
+        row["reading"] = name
+    return rows
+
+
+# A readings study's tables in its folder (docs/<page>/ for the committed one).
+ROWS = "rows.csv"
+RECORD = "run.json"
+
+
+def read_rows(folder: Path) -> list[dict]:
+    """A readings study's rows."""
+    with (Path(folder) / ROWS).open() as handle:
+        return list(csv.DictReader(handle))
+
+
+def read_record(folder: Path) -> dict:
+    """A readings study's record of its run: the command, the machine, ..."""
+    return json.loads((Path(folder) / RECORD).read_text())
+
+
+def write_record(record: dict, folder: Path) -> None:
+    (Path(folder) / RECORD).write_text(json.dumps(record, indent=1) + "\n")
+
+
+def markdown_table(header: list[str], rows: list[list[str]]) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def page_text(title: str, record: dict, body: str) -> str:
+    """A readings page: its title, the command and machine that made its rows
+    (for rows made before the study file, the commit of the command and the
+    command that runs the same studies since), its body."""
+    return render("readings_page.md.j2", title=title, record=record, body=body)
