@@ -128,7 +128,7 @@ class SceneSpec:
     radius: float = 1.0  # R, the unit of length
     n_disk: int = 800  # target number of points in the disk
     # The wall's and the model's reading (MODEL.md section 8) that the rule picks:
-    # docs/model.md, docs/benchmarks/model_readings.md.
+    # docs/model.md, docs/model_readings.md.
     n_wall: int | str = 1600  # points in the wall, or "density": the disk's number density
     roughness: float = 0.03  # std of surface displacement, in R
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
