@@ -147,7 +147,7 @@ def trace(folder: Path | str, options: ReferenceOptions) -> Trace:
     stepper = _EnergyStepper(model, options.integrator, options.dt)
     x, v = s.x.copy(), s.v.copy()
     dt = options.dt
-    disk_mass = float(observe.mass.sum())
+    disk_mass = float(s.mass[observe.disk].sum())
     disk_inertia = observe.rigid(x, v)[3]
     velocity_in = observe.rigid(x, v)[1]
 
@@ -181,7 +181,7 @@ def trace(folder: Path | str, options: ReferenceOptions) -> Trace:
         if step % options.check == 0:
             if not np.isfinite(v).all():
                 raise Unstable(f"the run went unstable at time {step * dt:.4g}")
-            if touched and observe.finished(x):
+            if touched and observe.finished(x, v, e_contact):
                 break
             if step * dt >= options.tmax:
                 raise Unstable(f"the disk has not left the wall by tmax = {options.tmax}")
