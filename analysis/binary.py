@@ -93,10 +93,12 @@ def binary_rebound(series: np.ndarray, radius: float = 1.0) -> tuple[Rebound, di
     v_in, tangent = contact_velocity(first, normal, radius, inertia)
     v_out, _ = contact_velocity(last, normal, radius, inertia)
     normal_in, tangential_in = float(v_in @ normal), float(v_in @ tangent)
+    # head-on: no tangential slip to restore (beta undefined, as on the wall)
+    tangential = abs(tangential_in) > 1e-9 * abs(normal_in)
     rebound = Rebound(
         e=float(-(v_out @ normal) / normal_in),
-        beta=float(-(v_out @ tangent) / tangential_in),
-        cot_gamma=float(abs(normal_in) / tangential_in),
+        beta=float(-(v_out @ tangent) / tangential_in) if tangential else None,
+        cot_gamma=float(abs(normal_in) / tangential_in) if tangential else None,
         omega=float(last["Lz"] / inertia[0]),
         vx_in=float(first["vx"] - first["tvx"]),
         vy_in=float(first["vy"] - first["tvy"]),

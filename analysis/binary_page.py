@@ -41,7 +41,7 @@ def paired_rows(rows: list[dict], wall_rows: list[dict]) -> tuple[list[dict], li
     return [r for r in rows if keys(r) in both], [r for r in wall_rows if keys(r) in both]
 
 
-def comparison(rows: list[dict], walls: dict[str, list[dict]], resamples: int = 200) -> dict:
+def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) -> dict:
     """Per lattice and angle: e, beta, cot gamma and the vibrations of the
     binary impacts and of the wall's, their differences, each with its seed-
     bootstrap error, and the verdicts; both studies' fits; the momenta.
@@ -50,19 +50,16 @@ def comparison(rows: list[dict], walls: dict[str, list[dict]], resamples: int = 
     ----------
     rows : list of dict
         The binary study's impacts.csv rows.
-    walls : dict
-        The wall study's rows by its tables' name (one study: the first).
+    wall_rows : list of dict
+        A wall study's rows of the same seeds and angles.
     resamples : int
         Seed-bootstrap resamples.
 
     Returns
     -------
     dict
-        What fits.json keeps under ``wall_comparison``.
+        What fits.json keeps under ``wall_comparison`` for this wall study.
     """
-    if not walls:
-        return {}
-    name, wall_rows = next(iter(walls.items()))
     disk_rows, wall_rows = paired_rows(rows, wall_rows)
     labelled = [{**r, "study_lattice": f"{r['study_lattice']}|disk"} for r in disk_rows] + [
         {**r, "study_lattice": f"{r['study_lattice']}|wall"} for r in wall_rows
@@ -83,10 +80,17 @@ def comparison(rows: list[dict], walls: dict[str, list[dict]], resamples: int = 
 
     central = statistic(tables)
     error = seed_bootstrap(tables, statistic, resamples)
-    out: dict = {"wall_tables": name, "pairs": len(disk_rows), "lattices": {}}
+    out: dict = {
+        "wall_vn": sorted({float(r["vn"]) for r in wall_rows}),
+        "disk_vn": sorted({float(r["vn"]) for r in disk_rows}),
+        "pairs": len(disk_rows),
+        "lattices": {},
+    }
     for lattice in lattices:
+        gammas = tables[f"{lattice}|disk"].gamma_deg
         entry = {
-            "gamma_deg": tables[f"{lattice}|disk"].gamma_deg.tolist(),
+            "gamma_deg": gammas.tolist(),
+            "cot_gamma_nominal": (1.0 / np.tan(np.radians(gammas))).tolist(),
             "impacts": tables[f"{lattice}|disk"].counts().tolist(),
         }
         for key in central:
@@ -104,15 +108,14 @@ def comparison(rows: list[dict], walls: dict[str, list[dict]], resamples: int = 
         "disk": study_estimates(disk_rows, resamples)[0]["lattices"],
         "wall": study_estimates(wall_rows, resamples)[0]["lattices"],
     }
-    for name_, key in (("momentum_change", "momentum"), ("angular_momentum_change", "angular")):
-        out[f"largest_{key}_change"] = max(float(r[name_]) for r in disk_rows)
+    for column, key in (("momentum_change", "momentum"), ("angular_momentum_change", "angular")):
+        out[f"largest_{key}_change"] = max(float(r[column]) for r in disk_rows)
     return out
 
 
-def draw(numbers: dict, folder: Path | str) -> None:
-    """e and beta against cot gamma, two disks (filled) beside the wall (open)."""
-    if not numbers:
-        return
+def draw(numbers: dict, folder: Path | str, name: str) -> None:
+    """e and beta against cot gamma, two disks (filled) beside the wall study
+    ``name`` (open): binary_e_<name>.png, binary_beta_<name>.png."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -141,7 +144,7 @@ def draw(numbers: dict, folder: Path | str) -> None:
                 )
         ax.legend(fontsize=8)
         fig.tight_layout()
-        fig.savefig(folder / f"binary_{q}.png", dpi=110)
+        fig.savefig(folder / f"binary_{q}_{name}.png", dpi=110)
         plt.close(fig)
 
 
@@ -169,29 +172,70 @@ def fit_rows(fits: dict) -> list[str]:
     return lines
 
 
-def section(numbers: dict, figure_dir: str) -> list[str]:
-    """The page's section: the tables of the comparison and its figures."""
-    if not numbers:
+def below_nominal(numbers: dict) -> tuple[int, int]:
+    """At how many angles the measured cot gamma of two disks lies below the
+    nominal one, of how many."""
+    below = total = 0
+    for entry in numbers["lattices"].values():
+        for measured, nominal in zip(entry["cot_gamma_disk"], entry["cot_gamma_nominal"]):
+            below += measured < nominal
+            total += 1
+    return below, total
+
+
+def section(by_wall: dict[str, dict], figure_dir: str) -> list[str]:
+    """The page's section: for each wall study, the comparison's tables and figures."""
+    by_wall = {name: numbers for name, numbers in by_wall.items() if numbers}
+    if not by_wall:
         return []
+    first = next(iter(by_wall.values()))
+    below, total = below_nominal(first)
     lines = [
         "## Two disks beside the same disks on the wall",
         "",
-        f"Each seed's disk hits a second disk here and the wall in `{numbers['wall_tables']}` "
-        f"({numbers['pairs']} pairs of impacts, same seed, lattice and angle). e and beta of "
+        "Each seed's disk hits a second disk here and the wall in the wall studies below "
+        "(pairs of impacts of the same seed, lattice and nominal angle). e and beta of "
         "two disks are those of the contact points' relative velocity at the line of centres "
         "where the centres come closest (docs/model.md, 'Two disks'); cot gamma is measured "
-        "there too, and lies below the nominal one, which sets the first touch of rigid "
-        "circles. Every +- is the seed bootstrap's error (whole seeds of both studies "
-        "resampled together); a difference is 'same' within 2 errors, 'differs' beyond 3.",
+        "there too: the nominal angle sets the first touch of rigid circles, and the line of "
+        "centres turns during the contact, so the measured cot gamma lies below the nominal "
+        f"one at {below} of {total} angles (the figures plot the measured one; pairs are "
+        "compared by nominal angle). Every +- is the seed bootstrap's error (whole seeds of "
+        "both studies resampled together); a difference is 'same' within 2 errors, "
+        "'differs' beyond 3.",
+        "",
+        "The relative normal speed of two disks is v_n; in the centre of mass each disk "
+        "meets the contact at about v_n / 2, with a quarter of the kinetic energy per mass "
+        "that a disk brings to the wall at v_n: on the wall at v_n / 2 it brings the wall "
+        "what it brings its partner. The disks here are compared with the wall at v_n = "
+        + " and at ".join(
+            ", ".join(f"{v:g}" for v in numbers["wall_vn"]) + " c" for numbers in by_wall.values()
+        )
+        + ".",
         "",
         f"Total momentum and angular momentum: the largest change over a run, relative to the "
-        f"disks' own, is {numbers['largest_momentum_change']:.1e} and "
-        f"{numbers['largest_angular_change']:.1e}.",
+        f"disks' own, is {first['largest_momentum_change']:.1e} and "
+        f"{first['largest_angular_change']:.1e}.",
+        "",
+    ]
+    for name, numbers in by_wall.items():
+        lines += wall_section(name, numbers, figure_dir)
+    return lines
+
+
+def wall_section(name: str, numbers: dict, figure_dir: str) -> list[str]:
+    """One wall study's comparison: per lattice and angle, then the fits."""
+    speeds = ", ".join(f"{v:g}" for v in numbers["wall_vn"])
+    lines = [
+        f"### On the wall at v_n = {speeds} c (`docs/{name}`)",
+        "",
+        f"{numbers['pairs']} pairs of impacts; two disks at v_n = "
+        f"{', '.join(f'{v:g}' for v in numbers['disk_vn'])} c.",
         "",
     ]
     for lattice, entry in numbers["lattices"].items():
         lines += [
-            f"### {lattice}",
+            f"#### {lattice}",
             "",
             "| gamma (nominal) | cot gamma, disks | e, disks | e, wall | difference | "
             "beta, disks | beta, wall | difference | vibration: disk, 2nd disk | "
@@ -218,17 +262,15 @@ def section(numbers: dict, figure_dir: str) -> list[str]:
             "",
         ]
     lines += [
-        "### The fits both ways",
-        "",
         "Walton's law and the compliant model fitted the measured way (e per angle, K from "
         "the disks' measured inertia), with the model-free measures beside them "
         "(analysis.estimates); chi2/dof above 2: the law does not describe the data.",
         "",
         *fit_rows(numbers["fits"]),
         "",
-        f"![e, two disks and the wall]({figure_dir}/binary_e.png)",
+        f"![e, two disks and the wall at {speeds} c]({figure_dir}/binary_e_{name}.png)",
         "",
-        f"![beta, two disks and the wall]({figure_dir}/binary_beta.png)",
+        f"![beta, two disks and the wall at {speeds} c]({figure_dir}/binary_beta_{name}.png)",
         "",
     ]
     return lines

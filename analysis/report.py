@@ -79,6 +79,13 @@ def speed_options(study: dict) -> str:
     return f"--vn {study.get('vn', 0.1):g}"
 
 
+def stop_rule(study: dict) -> str:
+    """How the study's runs ended: the stop rule, or two disks' own (decks/binary.lmp)."""
+    if study.get("target") == "disk":
+        return "of two disks (parted for good)"
+    return study["options"]["stop_rule"]
+
+
 def made_by(study: dict, preset: str) -> str:
     """The command that runs the study again, every option spelled out."""
     # a binary study has no wall (wall_options gives its target instead)
@@ -183,7 +190,7 @@ def results_page(
         f"from {angle_span(rows)} degrees; {samples}; "
         f"v_n = {study['vn']} {speed_unit_name(study)}; "
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
-        f"{study['options']['stop_rule']}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
+        f"{stop_rule(study)}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
         f"failed{drift_note}. LAMMPS time "
         f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
         f"Tables{where_tables}: `impacts.csv` (one row per impact), "
@@ -436,8 +443,11 @@ def render(
         extra["readings"] = grazing.readings_section(info, others, resamples)
     if info.get("target") == "disk":  # two disks: beside the same disks on the wall
         walls = {name: read_tables(folder)[1] for name, folder in (readings or {}).items()}
-        fits["wall_comparison"] = binary_page.comparison(rows, walls, resamples)
-        binary_page.draw(fits["wall_comparison"], figure_dir)
+        fits["wall_comparison"] = {
+            name: binary_page.comparison(rows, wall, resamples) for name, wall in walls.items()
+        }
+        for name, numbers in fits["wall_comparison"].items():
+            binary_page.draw(numbers, figure_dir, name)
         extra["wall_comparison"] = binary_page.section(fits["wall_comparison"], shown_figures)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")

@@ -147,8 +147,11 @@ def settings_text(
     reach = 2.0 * info["wall_longest_segment"]
     # Ghost atoms must reach across the longest spring, for bonds split between
     # ranks (1.5 times the longest natural length is LAMMPS's own estimate),
-    # and from a disk point to both ends of every wall segment it may touch.
-    comm = float(max(info["max_natural_length"] * 1.5, cutoff + 2.0 * reach) + skin)
+    # and from a disk point to both ends of every wall segment it may touch;
+    # two disks' rings, to the vertices RING_CHORD away along the other ring
+    # (the pair style's outward direction: potentials/pair_polyline_exp.cpp).
+    segments = RING_CHORD if info.get("target") == "disk" else 2.0
+    comm = float(max(info["max_natural_length"] * 1.5, cutoff + segments * reach) + skin)
     return (
         "# Scene settings written by the builder; -var on the command line overrides them.\n"
         f"variable cutoff      index {cutoff!r}\n"
@@ -169,6 +172,11 @@ def settings_text(
         f"variable disk_vy     index {float(velocity[1])!r}\n"
         + (binary_settings(scene) if info.get("target") == "disk" else "")
     )
+
+
+# pair_style polyline/exp's CHORD: a ring's outward direction at a vertex is
+# the chord between the vertices this many before and after it.
+RING_CHORD = 4
 
 
 def binary_settings(scene: Scene) -> str:

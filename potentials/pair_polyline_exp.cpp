@@ -64,6 +64,10 @@ using namespace LAMMPS_NS;
 
 enum { LEVER, GRADIENT };
 
+// a ring's outward direction at a vertex: the chord from CHORD vertices
+// before it to CHORD after it (inside_ring)
+static constexpr int CHORD = 4;
+
 /* ---------------------------------------------------------------------- */
 
 PairPolylineExp::PairPolylineExp(LAMMPS *lmp) : Pair(lmp), active(nullptr)
@@ -280,16 +284,16 @@ int PairPolylineExp::target(int i)
 int PairPolylineExp::vertex(tagint t, int i, int k)
 {
   if (closed) {
-    if (t < lo[k]) t += hi[k] - lo[k] + 1;
-    if (t > hi[k]) t -= hi[k] - lo[k] + 1;
+    const tagint n = hi[k] - lo[k] + 1;
+    t = lo[k] + ((t - lo[k]) % n + n) % n;
   } else if (t < lo[k] || t > hi[k])
     return -1;
   const int m = atom->map(t);
   if (m < 0)
     error->one(FLERR,
                "Pair polyline/exp: vertex {} is not on this rank; "
-               "raise comm_modify cutoff to at least cutoff + 2 reach = {}",
-               t, cut + 2.0 * reach);
+               "raise comm_modify cutoff to at least cutoff + {} reach = {}",
+               t, closed ? CHORD : 2, cut + (closed ? CHORD : 2) * reach);
   return domain->closest_image(i, m);
 }
 
@@ -308,7 +312,6 @@ int PairPolylineExp::vertex(tagint t, int i, int k)
 
 bool PairPolylineExp::inside_ring(int i, int w, int k)
 {
-  static constexpr int CHORD = 4;
   double **x = atom->x;
   tagint *tag = atom->tag;
   const int before = vertex(tag[w] - CHORD, i, k);
@@ -417,9 +420,10 @@ void PairPolylineExp::settings(int narg, char **arg)
   if (cut <= 0.0) error->all(FLERR, "Pair polyline/exp: cutoff must be > 0, got {}", cut);
   if (reach <= 0.0) error->all(FLERR, "Pair polyline/exp: reach must be > 0, got {}", reach);
   for (int k = 0; k < npolylines; k++)
-    if (lo[k] < 1 || hi[k] < lo[k] + (closed ? 2 : 1))
+    if (lo[k] < 1 || hi[k] < lo[k] + (closed ? 2 * CHORD : 1))
       error->all(FLERR, "Pair polyline/exp: need 1 <= first < last{}, got first {} last {}",
-                 closed ? " and 3 vertices to a ring" : "", lo[k], hi[k]);
+                 closed ? fmt::format(" and {} vertices to a ring", 2 * CHORD + 1) : "", lo[k],
+                 hi[k]);
   if (npolylines == 2 && lo[1] <= hi[0] && lo[0] <= hi[1])
     error->all(FLERR, "Pair polyline/exp: the rings {}..{} and {}..{} overlap", lo[0], hi[0],
                lo[1], hi[1]);

@@ -182,8 +182,9 @@ def ring_contact(
 
     The ring is the polyline through ``ring`` and back to its first vertex;
     its body is the polygon inside, and a point inside it within the cutoff
-    raises InsideWall (every edge's crossing counts here, where LAMMPS, which
-    sees only nearby edges, asks the closest one).
+    raises InsideWall (every edge's crossing of a vertical ray counts here,
+    where LAMMPS, which sees only nearby edges, casts its ray along the ring's
+    outward direction).
 
     Parameters
     ----------

@@ -99,11 +99,11 @@ def lammps_forces(
     return energy, f[: len(vertices)], f[len(vertices) :]
 
 
-def lammps_virial(tmp: Path, vertices, points, rule="lever", nprocs=1):
+def lammps_virial(tmp: Path, vertices, points, rule="lever", nprocs=1, extra=()):
     """Forces (on vertices, on points) and the pair's virial (xx, yy, xy) as
     LAMMPS tallies it, globally (compute pressure) and summed over the atoms
     (compute stress/atom): the deck writes both beside the forces."""
-    _, on_vertices, on_points = lammps_forces(tmp, vertices, points, rule, nprocs)
+    _, on_vertices, on_points = lammps_forces(tmp, vertices, points, rule, nprocs, extra=extra)
     path = tmp / f"forces_{rule}_{nprocs}.dump.virial"
     values = np.array(path.read_text().split(), dtype=float)
     return on_vertices, on_points, values[:3], values[3:]

@@ -242,3 +242,42 @@ def test_momentum_change_measures_a_lost_momentum():
     lost = momentum_change(series, (800.0, 790.0), 1.0)
     scale = (800.0 + 790.0) * np.hypot(0.05, 0.1) * 0.5  # each disk: half the relative speed
     assert lost["momentum_change"] == pytest.approx(790.0 * 1e-6 / scale, rel=1e-3)
+
+
+def test_the_apse_between_rows_is_found_from_its_neighbours():
+    """Centres that come closest between two rows (at t0, the rows 0.1 apart
+    and 0.037 off it), on a curved path: the parabola through the closest row
+    and its neighbours finds the normal there far closer than the closest
+    row's own line of centres does."""
+    theta = np.radians(20.0)
+    normal = np.array([np.sin(theta), np.cos(theta)])
+    tangent = np.array([normal[1], -normal[0]])
+    time = np.arange(-2.0, 2.0, 0.1) + 0.037
+    tau = time[:, None]
+    relative = (2.0 + 0.05 * tau**2) * normal + 0.1 * tau * tangent
+    values = {name: np.zeros(len(time)) for name in BINARY_COLUMNS}
+    values.update(time=time, x=relative[:, 0], y=relative[:, 1])
+    values["pe_contact"] = (np.abs(time) < 0.5).astype(float)
+    series = np.rec.fromarrays([values[c] for c in BINARY_COLUMNS], names=BINARY_COLUMNS)
+    at, found = apse(series)
+    nearest = relative[np.argmin(np.linalg.norm(relative, axis=1))]
+    nearest_error = np.linalg.norm(nearest / np.linalg.norm(nearest) - normal)
+    assert nearest_error > 1e-3  # the rows alone miss the normal
+    assert np.linalg.norm(found - normal) < 1e-3 * nearest_error
+    assert at == pytest.approx(0.0, abs=1e-3)
+
+
+def test_the_disks_stop_only_once_parted_for_good(tmp_path):
+    """Run on to tmax instead of stopping at the deck's first check after the
+    disks parted: e and beta change by round-off only (nothing acts on
+    either disk's centre or spin once they are apart)."""
+    from builder.lammps_data import write_scene
+    from runner.impact import run_scene
+
+    scene = build_scene(SceneSpec(**{**BINARY, "seed": 5}))
+    stopped = run_scene(write_scene(scene, tmp_path / "stopped"), RunOptions(tmax=30.0))
+    on = run_scene(write_scene(scene, tmp_path / "on"), RunOptions(tmax=30.0), {"early_stop": "no"})
+    assert on["time_end"] > stopped["time_end"] + 5.0
+    assert on["e"] == pytest.approx(stopped["e"], abs=1e-10)
+    assert on["beta"] == pytest.approx(stopped["beta"], abs=1e-10)
+    assert on["touches"] == stopped["touches"]

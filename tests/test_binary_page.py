@@ -35,7 +35,7 @@ def test_pairs_by_seed_cancel_what_a_seed_shares():
     seed-paired differences are exact (their errors 0) although each mean's
     error is not, and the verdicts follow."""
     wall = impact_rows("random", WALL_BETA, seeds=12, offset_sd=0.1, noise_sd=0.03)
-    numbers = comparison(binary(wall, 0.05), {"wall": wall}, resamples=20)
+    numbers = comparison(binary(wall, 0.05), wall, resamples=20)
     entry = numbers["lattices"]["random"]
     assert numbers["pairs"] == len(wall)
     assert np.allclose(entry["e_difference"], 0.05, atol=1e-12)
@@ -49,7 +49,7 @@ def test_pairs_by_seed_cancel_what_a_seed_shares():
 def test_only_impacts_both_studies_have_are_compared():
     wall = impact_rows("random", WALL_BETA, seeds=8)
     disks = binary([r for r in wall if int(r["seed"]) <= 5], 0.0)
-    numbers = comparison(disks, {"wall": wall}, resamples=10)
+    numbers = comparison(disks, wall, resamples=10)
     assert numbers["pairs"] == len(disks)
     assert max(numbers["lattices"]["random"]["impacts"]) == 5
 

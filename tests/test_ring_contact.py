@@ -139,8 +139,9 @@ def test_two_rings_exert_no_net_force_or_torque(tmp_path):
 
 @pytest.mark.parametrize("side", ["under a segment", "at a vertex"])
 def test_a_point_inside_the_other_ring_stops_the_run(tmp_path, side):
-    """LAMMPS tells inside from the closest feature; the reference from every
-    edge's crossing: both refuse ring A's lowest point moved just inside ring B."""
+    """LAMMPS tells inside from a ray's crossings with the nearby segments;
+    the reference from every edge's crossing: both refuse ring A's lowest
+    point moved just inside ring B."""
     ring_a, ring_b = two_rings(6, gap=0.03)
     top, low = int(np.argmax(ring_b[:, 1])), int(np.argmin(ring_a[:, 1]))
     spot = ring_b[top] if side == "at a vertex" else 0.5 * (ring_b[top] + ring_b[top + 1])
@@ -196,3 +197,14 @@ def test_a_folded_ring_does_not_take_a_point_outside_for_inside(tmp_path):
     assert energy == pytest.approx(expected.energy, rel=1e-12)
     assert relative(on_point, expected.on_points) < 1e-12
     assert relative(on_ring, expected.on_vertices) < 1e-12
+
+
+def test_a_ring_too_short_for_its_outward_direction_is_refused(tmp_path):
+    """A ring's outward direction spans 4 vertices either side of one: a ring
+    needs 9, else the chord folds onto itself."""
+    step = 2 * np.pi / 8
+    ring = np.stack([np.cos(np.arange(8) * step), np.sin(np.arange(8) * step)], axis=1)
+    with pytest.raises(RuntimeError, match="need 1 <= first < last and 9 vertices to a ring"):
+        lammps_forces(
+            tmp_path, ring, np.array([[0.0, 1.05]]), extra=("-var", "keywords", "closed yes")
+        )

@@ -45,13 +45,20 @@ def test_one_sample_has_one_bodies_file():
 
 
 @pytest.mark.parametrize(
-    ("lattice", "gamma"), [("random", 20.0), ("triangular", 60.0), ("square", 75.0)]
+    ("lattice", "gamma", "target"),
+    [
+        ("random", 20.0, "wall"),
+        ("triangular", 60.0, "wall"),
+        ("square", 75.0, "wall"),
+        ("random", 45.0, "disk"),
+    ],
 )
-def test_bodies_and_placed_scene_run_bit_for_bit(tmp_path, lattice, gamma):
+def test_bodies_and_placed_scene_run_bit_for_bit(tmp_path, lattice, gamma, target):
     """The deck placing the sample's bodies, read from their data file or its
     binary restart, runs the same impact, bit for bit, as the impact's own
-    placed data file: series.dat, energy.dat, e, beta."""
-    scene = build_scene(SceneSpec(lattice=lattice, gamma_deg=gamma, **SMALL))
+    placed data file: series.dat, energy.dat, e, beta; for two disks too (the
+    deck sets the second disk's velocity)."""
+    scene = build_scene(SceneSpec(lattice=lattice, gamma_deg=gamma, target=target, **SMALL))
     placed = write_scene(scene, tmp_path / "placed")
     bodies = write_bodies(scene, tmp_path / "bodies.data")
     restart = data_to_restart(bodies, tmp_path / "bodies.restart", "harmonic/quartic")

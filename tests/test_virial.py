@@ -48,3 +48,20 @@ def test_virial_is_the_sum_of_r_dot_f(tmp_path, rule, nprocs):
     assert scale > 0
     assert np.abs(global_virial - expected).max() <= TOLERANCE * scale
     assert np.abs(per_atom_sum - expected).max() <= TOLERANCE * scale
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_two_rings_virial_is_the_sum_of_r_dot_f(tmp_path, nprocs):
+    """Two disks' rings (closed yes partner): both directions tallied."""
+    from tests.test_ring_contact import ring_keywords, two_rings
+
+    ring_a, ring_b = two_rings(2)
+    extra = ring_keywords(len(ring_b), len(ring_a))
+    on_b, on_a, global_virial, per_atom_sum = lammps_virial(
+        tmp_path, ring_b, ring_a, "lever", nprocs, extra=extra
+    )
+    expected = r_dot_f(ring_b, ring_a, on_b, on_a)
+    scale = np.abs(expected).max()
+    assert scale > 0 and np.any(on_a) and np.any(on_b)
+    assert np.abs(global_virial - expected).max() <= TOLERANCE * scale
+    assert np.abs(per_atom_sum - expected).max() <= TOLERANCE * scale
