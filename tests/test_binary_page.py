@@ -55,10 +55,11 @@ def test_only_impacts_both_studies_have_are_compared():
 
 
 def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
-    """docs/binary_grazing.md from docs/binary_grazing/ and the wall's
-    docs/grazing/: the same page, but for where it says its files are."""
+    """docs/binary_grazing.md from docs/binary_grazing/ and the walls'
+    tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
+    the same page, but for where it says its files are."""
     from analysis.report import report_from_tables
-    from runner.study import PAGE_SECTIONS
+    from runner.study import PAGE_SECTIONS, READINGS
 
     docs = ROOT / "docs"
     page = tmp_path / "binary_grazing.md"
@@ -67,7 +68,7 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
         page,
         preset="binary_grazing",
         out=tmp_path / "tables",
-        readings={"grazing": docs / "grazing"},
+        readings={name: docs / name for name in READINGS["binary_grazing"]},
         sections=PAGE_SECTIONS["binary_grazing"],
     )
     made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
