@@ -74,10 +74,23 @@ def curve(theory: str, data: Means, parameters, inputs: dict) -> np.ndarray:
     return compliant_curve(data, parameters[0], inputs["nu"], inputs["alpha"], inputs["e"])
 
 
+def two_body_k(row: dict) -> float:
+    """Walton's K of a binary impact (docs/model.md, section 6), from both
+    disks' masses M (their points) and I = (I / M R^2) M R^2:
+    K = (1/M_A + 1/M_B + R^2/I_A + R^2/I_B) / (1/M_A + 1/M_B)."""
+    m_a, m_b = float(row["n_disk_points"]), float(row["n_target_points"])
+    r_a, r_b = float(row["disk_inertia_ratio"]), float(row["target_inertia_ratio"])
+    return 1.0 + (1.0 / (r_a * m_a) + 1.0 / (r_b * m_b)) / (1.0 / m_a + 1.0 / m_b)
+
+
 def lattice_constants(rows: list[dict], lattice: str) -> tuple[float, float, float]:
-    """(nu, I/(MR^2), K) of a lattice: the calibration's nu, the mean measured inertia."""
+    """(nu, I/(MR^2), K) of a lattice: the calibration's nu, the mean measured
+    inertia, and K = 1 + MR^2/I on the wall or, between two disks, the mean
+    of each pair's two-body K."""
     mine = [r for r in rows if r["study_lattice"] == lattice]
     inertia = float(np.mean([float(r["disk_inertia_ratio"]) for r in mine]))
+    if all(r.get("target") == "disk" for r in mine):
+        return float(mine[0]["nu"]), inertia, float(np.mean([two_body_k(r) for r in mine]))
     return float(mine[0]["nu"]), inertia, 1.0 + 1.0 / inertia
 
 

@@ -68,6 +68,7 @@ BINARY_COLUMNS = (
     "angular_momentum_change",
     "n_target_points",
     "target_inertia_ratio",
+    "n_disk_points",  # with the three before: each pair's two-body K (analysis.estimates)
 )
 
 

@@ -73,3 +73,16 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
     )
     made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
     assert made == (docs / "binary_grazing.md").read_text()
+
+
+def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():
+    """K = (1/M_A + 1/M_B + R^2/I_A + R^2/I_B) / (1/M_A + 1/M_B): one disk's
+    1 + MR^2/I for two alike; a partner of half the mass and inertia, 1 + (1/rA
+    + 2/rB) / 3."""
+    from analysis.estimates import two_body_k
+
+    alike = {"n_disk_points": 800, "n_target_points": 800}
+    alike.update(disk_inertia_ratio=0.51, target_inertia_ratio=0.51)
+    assert two_body_k(alike) == pytest.approx(1.0 + 1.0 / 0.51, rel=1e-14)
+    light = dict(alike, n_target_points=400, target_inertia_ratio=0.4)
+    assert two_body_k(light) == pytest.approx(1.0 + (1 / 0.51 + 2 / 0.4) / 3.0, rel=1e-14)
