@@ -59,6 +59,7 @@ from .study import (
     EnvironmentFault,
     runs_folder,
 )
+from .wall_tilt import add_tilt_arguments, wall_tilt
 
 MAX_DRIFT_HELP = (
     "flag a run whose energy drift (change of the total energy over the initial "
@@ -244,6 +245,11 @@ def parser() -> OneLineParser:
 
     study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
     add_study_arguments(study)
+
+    tilt = commands.add_parser(
+        "tilt", help="the wall's tilt under the disk, from dumps of a grazing study's impacts"
+    )
+    add_tilt_arguments(tilt)
 
     page = commands.add_parser(
         "page", help="a study's page in docs/ again from its committed tables, without its runs"
@@ -582,6 +588,9 @@ def main(argv: list[str] | None = None) -> int:
             results = [run_scene(args.scene, options_from_args(args))]
         elif args.command == "page":
             return remake_page(args)
+        elif args.command == "tilt":
+            print(f"wrote {shown(wall_tilt(args))}")
+            return 0
         else:
             with stop_on_signals():
                 return run_study_command(args)

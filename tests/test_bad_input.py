@@ -104,6 +104,7 @@ ENTRY_POINTS = [
             "run": ["run", "{scene}"],
             "study": ["study", "demo", "--name", "bad_input_probe"],
             "page": ["page", "speed", "--out", "{out}"],
+            "tilt": ["tilt", "--out", "{out}"],
         },
     ),
     EntryPoint(

@@ -26,3 +26,23 @@ def test_an_elastic_bounce_off_a_tilted_surface_has_e_above_one(gamma_deg, theta
     assert e_wall > 1.0
     assert e_wall - 1.0 == pytest.approx(2 * share, rel=0.1)
     assert tilted_e(result, 0.0) == pytest.approx(e_wall, rel=1e-12)  # untilted: the wall's
+
+
+def test_runner_tilt_refuses_an_angle_the_study_has_not(tmp_path):
+    """python -m runner tilt --gamma G: G must be one of the tables' angles;
+    one line naming the option and the angles, exit 2, nothing written."""
+    import subprocess
+    import sys
+
+    from tests.helpers import ROOT
+
+    out = tmp_path / "tilt"
+    proc = subprocess.run(
+        [sys.executable, "-m", "runner", "tilt", "--gamma", "33", "--out", str(out)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 2
+    assert "--gamma must be one of the study's angles (30 45 55" in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1 and not out.exists()

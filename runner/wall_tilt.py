@@ -1,7 +1,7 @@
 """The letter's mechanism for e > 1, checked from dumps: the wall's tilt under the disk.
 
-    python bench/wall_tilt.py [--tables docs/grazing] [--gamma G] [--dump-every 10]
-                              [--docs | --out FOLDER]
+    python -m runner tilt [--tables docs/grazing] [--gamma G] [--dump-every 10]
+                          [--docs | --out FOLDER]
 
 From a grazing study's committed tables (runner study grazing), at the angle
 of the largest mean e (or --gamma), the impact with the largest e and the
@@ -10,9 +10,9 @@ one with the smallest are run again, on the study's own scenes and settings
 the tilt that the wall's deformation adds to its surface under the disk,
 frame by frame, its mean over the contact weighted by the contact force,
 and the share of the normal approach speed that this tilt adds from the
-tangential motion, tan(gamma) tan(tilt). The page has the numbers, a figure
-of the tilt against time for both impacts, and their e checked against the
-table's.
+tangential motion, tan(gamma) tan(tilt). The page (docs/wall_tilt/ with
+--docs, runs/wall_tilt/ otherwise) has the numbers, a figure of the tilt
+against time for both impacts, and their e checked against the table's.
 """
 
 from __future__ import annotations
@@ -20,20 +20,20 @@ from __future__ import annotations
 import argparse
 import csv
 import json
-import sys
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
+from analysis.readings import markdown_table
 from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
-from bench.common import ROOT, bench_parser, markdown_table, page_folder, refuse, write_report
-from builder.checks import InPath, Range
+from builder.checks import InPath, OutFolder, Range
 from builder.errors import InputError
 from builder.scene import ANGLE
-from runner.impact import run_impact
-from runner.study import Study, runs_folder
+
+from .impact import ROOT, run_impact
+from .study import Study, machine, runs_folder
 
 DUMP_EVERY = Range(1, 10_000, integer=True)
 
@@ -89,8 +89,8 @@ def draw(runs: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
-def parser() -> argparse.ArgumentParser:
-    parser = bench_parser(__file__, __doc__, out="the page, figure and series")
+def add_tilt_arguments(parser: argparse.ArgumentParser) -> None:
+    """runner tilt's options."""
     parser.add_argument(
         "--tables",
         type=InPath(needs=("impacts.csv", "study.json")),
@@ -109,26 +109,38 @@ def parser() -> argparse.ArgumentParser:
         default=10,
         help=f"steps between dump frames, {DUMP_EVERY.describe()} (default: 10)",
     )
-    return parser
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument(
+        "--docs", action="store_true", help="write the page into docs/wall_tilt/ (the committed)"
+    )
+    where.add_argument(
+        "--out",
+        type=OutFolder(lammps=False),
+        default=None,
+        help="write the page, figure and series into this folder (default: runs/wall_tilt/)",
+    )
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
-    try:
-        # the default is checked here; a given folder was by its type
-        tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
-        if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
-            raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
-        with (tables / "impacts.csv").open() as handle:
-            rows = list(csv.DictReader(handle))
-        gamma, high, low = pick(rows, args.gamma)
-    except InputError as error:
-        return refuse(__file__, error)
+def wall_tilt(args: argparse.Namespace) -> Path:
+    """Run the two impacts again and write the page; returns its path.
+
+    Raises
+    ------
+    builder.errors.InputError
+        If the tables are missing or --gamma is not one of their angles.
+    """
+    # the default is checked here; a given folder was by its type
+    tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
+    if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
+        raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
+    with (tables / "impacts.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    gamma, high, low = pick(rows, args.gamma)
     study = Study.from_json(tables / "study.json")
-    folder = page_folder(args)
+    folder = args.out or (ROOT / "docs" if args.docs else runs_folder()) / "wall_tilt"
     folder.mkdir(parents=True, exist_ok=True)
     name = f"wall_tilt_{tables.name}"
-    work = runs_folder() / "bench" / name
+    work = runs_folder() / "wall_tilt" / "runs" / name
     runs = [run(study, row, work / f"s{row['seed']}", args.dump_every) for row in (high, low)]
     header = [
         "seed",
@@ -180,16 +192,12 @@ def main(argv: list[str] | None = None) -> int:
         "shaded: each impact's contact. Series: "
         f"`{name}.json`.*\n"
     )
-    command = (
-        f"python bench/wall_tilt.py --tables {shown_path(tables)} --dump-every {args.dump_every}"
-    )
+    command = f"python -m runner tilt --tables {shown_path(tables)} --dump-every {args.dump_every}"
     command += f" --gamma {gamma:g}" if args.gamma is not None else ""
     command += " --docs" if args.docs else ""
-    print(body)
-    path = write_report(name, "The tilt of the wall under the disk", command, body, folder=folder)
-    print(f"wrote {path}")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    path = folder / f"{name}.md"
+    path.write_text(
+        f"# The tilt of the wall under the disk\n\nGenerated by `{command}` on {machine()}."
+        f"\n\n{body}\n"
+    )
+    return path
