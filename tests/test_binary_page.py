@@ -17,7 +17,9 @@ def binary(rows: list[dict], shift: float) -> list[dict]:
     """The same impacts between two disks, e higher by ``shift``."""
     return [
         {**r, "target": "disk", "e": float(r["e"]) + shift, "side_clearance": "",
-         "momentum_change": 1e-15, "angular_momentum_change": 2e-15}
+         "momentum_change": 1e-15, "angular_momentum_change": 2e-15,
+         "n_disk_points": 800, "n_target_points": 790,
+         "target_inertia_ratio": r["disk_inertia_ratio"]}
         for r in rows
     ]  # fmt: skip
 
