@@ -41,8 +41,10 @@ REFERENCE = ReferenceOptions(integrator="suzuki", dt=1e-3)
 BINARY = {"random_disk_g45": {"lattice": "random", "gamma_deg": 45.0, "target": "disk"}}
 
 
-def scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
-    """The nine scenes of the disks on the wall, and one of two disks."""
+def scenes(
+    n_disk: int = 800, roughness: float = 0.03, two_disks: bool = True
+) -> dict[str, SceneSpec]:
+    """The nine scenes of the disks on the wall, and (``two_disks``) one of two disks."""
     on_the_wall = {
         f"{lattice}_g{gamma:g}": SceneSpec(
             lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra
@@ -50,11 +52,11 @@ def scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
         for lattice, extra in LATTICES.items()
         for gamma in ANGLES
     }
-    two_disks = {
+    binary = {
         name: SceneSpec(n_disk=n_disk, roughness=roughness, **fields)
         for name, fields in BINARY.items()
     }
-    return {**on_the_wall, **two_disks}
+    return {**on_the_wall, **(binary if two_disks else {})}
 
 
 def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REFERENCE) -> dict:
