@@ -177,9 +177,12 @@ void PairPolylineExp::compute(int eflag, int vflag)
           t = tt;
         }
         // half-open in x, so that a ray through a vertex counts once; the
-        // crossing is above the point if (u x s) / s_x > 0
-        const bool straddles = (x[ja][0] <= x[i][0]) != (x[jb][0] <= x[i][0]);
-        if (straddles && (ux * sy - uy * sx) * sx > 0.0) crossings++;
+        // crossing is above the point if (u x s) / s_x > 0 (the open wall's
+        // test: a ring casts its own ray once the closest feature is known)
+        if (!closed) {
+          const bool straddles = (x[ja][0] <= x[i][0]) != (x[jb][0] <= x[i][0]);
+          if (straddles && (ux * sy - uy * sx) * sx > 0.0) crossings++;
+        }
       }
     }
     if (w1 < 0) continue;
