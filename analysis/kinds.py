@@ -22,7 +22,13 @@ from types import ModuleType
 
 from .readings import Setup, page_text, read_record, read_rows
 
-READINGS_KINDS = ("scene_readings", "model_readings", "fact_sensitivity", "wall_width")
+READINGS_KINDS = (
+    "scene_readings",
+    "model_readings",
+    "fact_sensitivity",
+    "wall_width",
+    "resolution",
+)
 KINDS = ("results", *READINGS_KINDS)
 
 

@@ -51,8 +51,20 @@ MODEL_CHANGES = {
 }
 # Relative to the first reading, not to today's default.
 MODELS = {name: {**FIRST_READING, **change} for name, change in MODEL_CHANGES.items()}
+# How the model is carried to finer disks (docs/model.md, "The model as the
+# resolution grows"): the roughness's correlation length (0.048 R: the rms
+# slope, roughness / length, of independent draws 2 pi / 93 R apart, the
+# 800-point disk's surface spacing, sqrt(2) roughness / spacing) and the
+# contact's scaling; "continuum" changes neither with the spacing, the other
+# two take the paper's per-point reading of one of them.
+ROUGHNESS_LENGTH = 0.048
+LIMITS = {
+    "continuum": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "spacing"},
+    "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
+    "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
+}
 # The named readings a study file's [scene] may give, by key.
-NAMED = {"wall": WALLS, "model": MODELS}
+NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS}
 
 # Choices that depart from the paper's text, for the rules' tie-break: its
 # sentence (800 points, one ka, the sides held), its c, its "displaced along

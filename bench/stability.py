@@ -31,7 +31,7 @@ from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec, build_scene
 from reference.data import read_data
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
-from runner.options import RESPA_NRESPA, RunOptions
+from runner.options import DEFAULT_DT, RESPA_NRESPA, RunOptions
 
 STEPS = (1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2, 2.4e-2, 3.2e-2)
 CASES = [
@@ -198,7 +198,7 @@ def main(argv: list[str] | None = None) -> int:
             sections.append(
                 "## Speeds at which the contact is resolved\n\n"
                 f"Random disk on the default scene at the default run settings (dt "
-                f"{RunOptions().dt:g}), seeds {seeds}. `--vn` takes (0, 0.3] and a run whose "
+                f"{DEFAULT_DT:g}), seeds {seeds}. `--vn` takes (0, 0.3] and a run whose "
                 f"speed along the wall, v_n tan gamma, exceeds {MAX_TANGENTIAL_SPEED:g} c is "
                 "warned of "
                 "(builder/scene.py's VN and MAX_TANGENTIAL_SPEED): every run below both "
@@ -215,7 +215,7 @@ def main(argv: list[str] | None = None) -> int:
                         "total energy change / initial kinetic energy",
                         "largest strain of a disk spring at the end",
                     ],
-                    [long_run(tmp, dt) for dt in (RunOptions().dt,)],
+                    [long_run(tmp, dt) for dt in (DEFAULT_DT,)],
                 )
             )
     body = "\n\n".join(sections)

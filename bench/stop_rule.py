@@ -28,7 +28,7 @@ from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
-from runner.options import RunOptions
+from runner.options import DEFAULT_DT, RunOptions
 
 LATTICES = {
     "random": {},
@@ -134,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
                     name,
                     str(len(steps)),
                     f"{median(steps):.0f}",
-                    f"{LONG / RunOptions().dt:.0f}",
+                    f"{LONG / DEFAULT_DT:.0f}",
                     str(misses),
                     f"{worst:.1e}" if misses else "-",
                 ]

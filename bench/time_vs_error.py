@@ -47,7 +47,7 @@ from reference.run import ReferenceOptions, Unstable, run_reference
 from reference.validate import reference_runs, scenes
 from runner.impact import run_scene
 from runner.lammps_run import LammpsError
-from runner.options import RunOptions
+from runner.options import DEFAULT_DT, RunOptions
 from runner.study import runs_folder
 
 TOLERANCE = 1e-3  # on e and beta, smooth scenes
@@ -376,7 +376,7 @@ def main(argv: list[str] | None = None) -> int:
     table = summary(rows)
     options = {label: opts for label, kind, opts in settings() if kind == "lammps"}
     verlet_best, respa_best = picks(table, options)
-    default = next((r for r in table if r["label"] == f"verlet dt={RunOptions().dt:g}"), None)
+    default = next((r for r in table if r["label"] == f"verlet dt={DEFAULT_DT:g}"), None)
     paper = next((r for r in table if "paper" in r["label"]), None)
     lines = []
     for r in table:

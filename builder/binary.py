@@ -57,7 +57,12 @@ def partner_body(spec: SceneSpec) -> Body:
     """The second disk: its own stream of the sample's seed, or the disk of
     sample ``partner_seed``; the disk's lattice unless ``partner_lattice``."""
     lattice = spec.partner_lattice or spec.lattice
-    readings = (spec.roughness_direction, spec.surface_row, spec.regular_surface)
+    readings = (
+        spec.roughness_direction,
+        spec.surface_row,
+        spec.regular_surface,
+        spec.roughness_length,
+    )
     if spec.partner_seed is not None:
         return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
     rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
@@ -123,7 +128,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     # The contact's range is the coarser disk's spacing, as the wall's is its
     # own: the surface rows are then as fine as the range, both ways.
     cutoff = max(disk.spacing, target.spacing) * R
-    require_contact_resolved(spec.contact_a, cutoff / R)
+    require_contact_resolved(spec.contact_decay * R, cutoff / R, spec)
 
     quantum = placement_quantum(R)
     disk_points = on_grid(disk.points * R, quantum)
@@ -249,7 +254,7 @@ def binary_info(
         "ka_target": float(ka_target),
         "kb_over_ka": spec.kb_over_ka,
         "contact": {
-            "a": float(spec.contact_a / R),
+            "a": float(spec.contact_decay),
             # both directions at the V0 of the disk's mass (docs/model.md, "Two disks")
             "V0": float(contact_energy(spec, mass_a)),
             "cutoff": float(cutoff),

@@ -189,6 +189,31 @@ REGULAR_SURFACES = ("band", "lattice")
 ROW_MIN_DISTANCE = 0.67
 
 
+def correlated(noise: np.ndarray, spacing: float, length: float) -> np.ndarray:
+    """White noise along an evenly spaced periodic row made a Gaussian random
+    profile with correlation length ``length`` (both in the row's units).
+
+    The profile's covariance between points a distance s apart along the row
+    is exp(-s^2 / (2 length^2)) (unit variance), wrapped around the row's
+    period, which is the same profile at any spacing: its slopes do not grow
+    as the row is refined, unlike independent draws per point (docs/model.md,
+    "The model as the resolution grows"). The covariance of an evenly spaced
+    periodic row is circulant, so its eigenvalues are the FFT of its first row
+    and ``noise`` filtered by their square roots has exactly that covariance
+    (circulant embedding). ``length`` 0 gives ``noise`` itself.
+    """
+    if length == 0.0:
+        return noise
+    n = len(noise)
+    period = n * spacing
+    lag = np.minimum(np.arange(n), n - np.arange(n)) * spacing
+    # the Gaussian wrapped around the period: images up to 4 periods away
+    images = lag[:, None] + period * np.arange(-4, 5)[None, :]
+    covariance = np.exp(-0.5 * (images / length) ** 2).sum(axis=1)
+    eigenvalues = np.clip(np.fft.rfft(covariance).real, 0.0, None)
+    return np.fft.irfft(np.sqrt(eigenvalues) * np.fft.rfft(noise), n)
+
+
 def make_disk(
     rng: np.random.Generator,
     lattice: str = "random",
@@ -198,13 +223,16 @@ def make_disk(
     roughness_direction: str = "normal",
     surface_row: str = "even",
     regular_surface: str = "band",
+    roughness_length: float = 0.0,
 ) -> Body:
     """A disk of radius 1 centred at the origin.
 
     The surface row is evenly spaced on the circle (or, with ``surface_row``
     "random", a Poisson-disk sample of it) and pushed along the radius by
     Gaussian roughness of standard deviation ``roughness`` (and, with
-    ``roughness_direction`` "both", along the circle by another). A regular
+    ``roughness_direction`` "both", along the circle by another), independent
+    from point to point or, with ``roughness_length`` > 0, a random profile of
+    that correlation length along the circle (``correlated``). A regular
     disk with ``regular_surface`` "lattice" has no separate row: its surface
     is the lattice's own outermost points (``lattice_surface_disk``).
 
@@ -220,7 +248,8 @@ def make_disk(
             rng, lattice, spacing, roughness, k2_over_k1, roughness_direction
         )
     n_surface = int(round(2.0 * np.pi / spacing))
-    radial = roughness * rng.standard_normal(n_surface)
+    arc = 2.0 * np.pi / n_surface
+    radial = roughness * correlated(rng.standard_normal(n_surface), arc, roughness_length)
 
     if lattice == "random":
         candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0])
@@ -233,9 +262,8 @@ def make_disk(
         angle = 2.0 * np.pi * np.arange(n_surface) / n_surface
     surface_points = (1.0 + radial)[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=1)
     if roughness_direction == "both":
-        surface_points = around_the_circle(
-            surface_points, roughness * rng.standard_normal(len(angle))
-        )
+        shift = correlated(rng.standard_normal(len(angle)), arc, roughness_length)
+        surface_points = around_the_circle(surface_points, roughness * shift)
     n_surface = len(surface_points)
     interior = keep_clear(candidates, surface_points, CLEARANCE * spacing)
 
@@ -372,13 +400,17 @@ def random_rectangle(
     height: float,
     roughness: float = 0.0,
     roughness_direction: str = "normal",
+    roughness_length: float = 0.0,
 ):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
     Rows of points on its four sides; the top row (but its corners) pushed
     along y by Gaussian roughness, and with ``roughness_direction`` "both"
     along x by another (then put in order of x, within a tenth of a spacing
-    of the sides). Returns the points, the outline in counter-clockwise order,
+    of the sides). With ``roughness_length`` > 0 both are random profiles of
+    that correlation length along the row (``correlated``: the row's inner
+    points taken as periodic, which correlates its two ends, held 8 R apart
+    at the wall's sides). Returns the points, the outline in counter-clockwise order,
     and the indices of the top, right, left and bottom rows (sides without the
     top corners, bottom without its corners).
     """
@@ -387,7 +419,9 @@ def random_rectangle(
     n_side = int(round(height / spacing))
     top_x = np.linspace(-half, half, n_top + 1)
     top_y = np.zeros(n_top + 1)
-    top_y[1:-1] = roughness * rng.standard_normal(n_top - 1)  # corners stay on the sides
+    step = top_x[1] - top_x[0]
+    # corners stay on the sides
+    top_y[1:-1] = roughness * correlated(rng.standard_normal(n_top - 1), step, roughness_length)
     top = np.stack([top_x, top_y], axis=1)
     side_y = np.linspace(0.0, -height, n_side + 1)[1:]  # below the top corners
     right = np.stack([np.full(n_side, half), side_y], axis=1)
@@ -413,7 +447,8 @@ def random_rectangle(
     )
     candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
     if roughness_direction == "both":  # drawn after the interior, which a seed keeps
-        inner = top_x[1:-1] + roughness * rng.standard_normal(n_top - 1)
+        shift = correlated(rng.standard_normal(n_top - 1), step, roughness_length)
+        inner = top_x[1:-1] + roughness * shift
         edge = half - 0.1 * spacing
         order = np.argsort(inner, kind="stable")
         rim[1:n_top, 0] = np.clip(inner[order], -edge, edge)
@@ -430,6 +465,7 @@ def make_wall(
     roughness: float = 0.03,
     fixed: str = "sides",
     roughness_direction: str = "normal",
+    roughness_length: float = 0.0,
 ) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
@@ -440,7 +476,7 @@ def make_wall(
     """
     spacing = triangular_spacing(n_points / (width * height))
     points, outline, rows = random_rectangle(
-        rng, spacing, width, height, roughness, roughness_direction
+        rng, spacing, width, height, roughness, roughness_direction, roughness_length
     )
     top = rows["top"]
     role = np.full(len(points), INTERIOR)

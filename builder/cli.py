@@ -19,6 +19,7 @@ from .scene import (
     NU,
     RADIUS,
     ROUGHNESS,
+    ROUGHNESS_LENGTH,
     SEED,
     VN,
     WALL_KA,
@@ -31,6 +32,18 @@ class OneLineParser(argparse.ArgumentParser):
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def roughness_length(text: str) -> float:
+    """--roughness-length: 0 (each point on its own), or a correlation length."""
+    try:
+        if float(text) == 0.0:
+            return 0.0
+    except ValueError:
+        pass
+    return ROUGHNESS_LENGTH(text)
+
+
 
 
 def wall_points(text: str) -> int | str:
@@ -70,9 +83,9 @@ def add_wall_arguments(group, defaults: bool = True) -> None:
     group.add_argument(
         "--n-wall",
         type=wall_points,
-        default=spec.n_wall if defaults else None,
+        default=None,  # twice the disk's points (SceneSpec)
         help=f"points in the wall, {N_WALL.describe()}, or 'density': the disk's number "
-        f"density (default: {spec.n_wall})",
+        "density (default: twice --n-disk, the paper's 1600 for 800)",
     )
     group.add_argument(
         "--wall-ka",
@@ -143,7 +156,7 @@ def add_model_arguments(group, defaults: bool = True) -> None:
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
     from .bodies import LATTICES
-    from .scene import TARGETS
+    from .scene import CONTACT_SCALINGS, TARGETS
 
     group = parser.add_argument_group("scene")
     group.add_argument(
@@ -185,6 +198,14 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         type=ROUGHNESS,
         default=0.03,
         help=f"std of the surface roughness, {ROUGHNESS.describe()} (default: 0.03)",
+    )
+    group.add_argument(
+        "--roughness-length",
+        type=roughness_length,
+        default=0.0,
+        help="the roughness's correlation length along the surface, 0 (each point drawn on "
+        f"its own, the paper; default) or {ROUGHNESS_LENGTH.describe()} (docs/model.md, "
+        "'The model as the resolution grows')",
     )
     square = group.add_mutually_exclusive_group()
     square.add_argument(
@@ -228,8 +249,16 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         "--contact-a",
         type=CONTACT_A,
         default=300.0,
-        help=f"decay rate of the contact, {CONTACT_A.describe()} (default: 300); finer "
-        "disks need a larger one, 300 * sqrt(n_disk / 800)",
+        help=f"decay rate of the contact, {CONTACT_A.describe()}, at 800 disk points with "
+        "--contact-scaling spacing (default: 300)",
+    )
+    group.add_argument(
+        "--contact-scaling",
+        choices=CONTACT_SCALINGS,
+        default="spacing",
+        help="spacing: a R = contact_a sqrt(n_disk / 800) and V0 times sqrt(800 / n_disk), "
+        "the contact's energy per length of surface held (default); fixed: a and V0 as at "
+        "800 points, the paper's (docs/model.md, 'The model as the resolution grows')",
     )
     add_model_arguments(parser.add_argument_group("the readings of the model (MODEL.md section 8)"))
 
@@ -249,6 +278,8 @@ OPTIONS = {
     "n_disk": "--n-disk",
     "n_wall": "--n-wall",
     "contact_a": "--contact-a",
+    "contact_scaling": "--contact-scaling",
+    "roughness_length": "--roughness-length",
     "wall_ka": "--wall-ka",
     "wall_width": "--wall-width",
     "k2_over_k1": "--k2-over-k1",
@@ -312,9 +343,11 @@ def spec_from_args(args: argparse.Namespace):
         radius=args.radius,
         n_disk=args.n_disk,
         roughness=args.roughness,
+        roughness_length=args.roughness_length,
         k2_over_k1=k2_over_k1,
         **wall,
         contact_a=args.contact_a,
+        contact_scaling=args.contact_scaling,
         target=args.target,
         partner_lattice=args.partner_lattice,
         partner_seed=args.partner_seed,

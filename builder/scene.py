@@ -61,6 +61,17 @@ NU = Range(0.0, 0.99, low_open=True)
 WALL_KA = Range(0.01, 1000.0, unit="the wall's ka over the random disk's")
 WALL_WIDTH = Range(4.0, 100.0, unit="R")
 CONTACT_A = Range(1.0, 10_000.0, unit="a R")
+# The roughness's correlation length along the surface; 0 draws each point on
+# its own (the paper). Below 0.005 R its profile needs more modes than points.
+ROUGHNESS_LENGTH = Range(0.005, 1.0, unit="R, or 0: each point on its own")
+# How the contact changes with the resolution (docs/model.md, "The model as
+# the resolution grows"): "fixed", the paper's a R = contact_a and V0 at any
+# number of points; "spacing", a times the spacing and the contact's energy
+# per length of surface held at the 800-point disk's, which makes the contact
+# harder as the disk is refined, towards a hard contact in the limit.
+CONTACT_SCALINGS = ("spacing", "fixed")
+# The disk at which every setting that follows the resolution is the paper's.
+REFERENCE_N_DISK = 800
 # Where the default run resolves the contact (bench/stability.py,
 # docs/benchmarks/stability_speeds.md, three seeds per point): every normal speed up
 # to 0.4 c at speeds along the wall up to 0.8 c; at 0.5 c and 1.0 c along the
@@ -106,14 +117,19 @@ DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 MIN_CUTOFF_DECAYS = 15.0
 
 
-def require_contact_resolved(contact_a: float, spacing: float) -> None:
-    """Refuse a contact whose exponential is still large at the cutoff."""
-    if contact_a * spacing < MIN_CUTOFF_DECAYS:
+def require_contact_resolved(decay: float, spacing: float, spec=None) -> None:
+    """Refuse a contact whose exponential is still large at the cutoff.
+
+    ``decay`` is the contact's a R as the scene has it (``SceneSpec.contact_decay``
+    times R), ``spacing`` the cutoff in R."""
+    if decay * spacing < MIN_CUTOFF_DECAYS:
+        scaled = spec is not None and spec.contact_scaling == "fixed"
+        hint = "; contact_scaling spacing follows the resolution" if scaled else ""
         raise InputError(
-            f"contact_a must be >= {math.ceil(MIN_CUTOFF_DECAYS / spacing)} at this resolution "
-            f"(wall spacing {spacing:.4f} R, the cutoff: at least {MIN_CUTOFF_DECAYS:g} decay "
-            f"lengths within it), got {contact_a:g}; 20 / spacing = {20.0 / spacing:.0f} keeps "
-            "the study's 20 (docs/contact.md)"
+            f"contact_a must make a R >= {math.ceil(MIN_CUTOFF_DECAYS / spacing)} at this "
+            f"resolution (wall spacing {spacing:.4f} R, the cutoff: at least "
+            f"{MIN_CUTOFF_DECAYS:g} decay lengths within it), got a R = {decay:g}{hint} "
+            "(docs/contact.md)"
         )
 
 
@@ -129,15 +145,23 @@ class SceneSpec:
     n_disk: int = 800  # target number of points in the disk
     # The wall's and the model's reading (MODEL.md section 8) that the rule picks:
     # docs/model.md, docs/model_readings.md.
-    n_wall: int | str = 1600  # points in the wall, or "density": the disk's number density
+    # points in the wall, or "density": the disk's number density; None: twice
+    # the disk's (the paper's 1,600 for 800), so that the wall follows the
+    # disk's resolution
+    n_wall: int | str | None = None
     roughness: float = 0.03  # std of surface displacement, in R
+    # the roughness's correlation length along the surface, in R; 0: each
+    # point drawn on its own (the paper), whose slopes grow as the disk is refined
+    roughness_length: float = 0.0
     k2_over_k1: float = 3.0 / 7.0  # square lattice only
     kb_over_ka: float = 1e-3
     wall_fixed: str = "sides"
     wall_width: float = 8.0  # in R
     wall_height: float = 2.0  # in R
     wall_ka: float | str = 10.0  # wall's ka over the random disk's, or "same-c": wave speed c
-    contact_a: float = 300.0  # decay rate of the contact, a R
+    contact_a: float = 300.0  # decay rate of the contact, a R (at 800 points with "spacing")
+    # the contact as the disk is refined: a R and V0 "fixed", or following the spacing
+    contact_scaling: str = "spacing"
     # The readings of the model (MODEL.md section 8; MODEL_READINGS below).
     contact_mass: str = "disk"  # V0 = a m c^2 R / 2 with m one point's mass or the disk's
     speed_unit: str = "c"  # vn in units of c, or of the springs' sound speed d sqrt(ka / m)
@@ -152,6 +176,8 @@ class SceneSpec:
     partner_seed: int | None = None  # None: the sample's own third stream; N: sample N's disk
 
     def __post_init__(self) -> None:
+        if self.n_wall is None and isinstance(self.n_disk, (int, np.integer)):
+            self.n_wall = 2 * int(self.n_disk)
         # Same spec, same files: 60 and 60.0 must not write different metadata.
         for name, kind in (("seed", int), ("n_disk", int), ("n_wall", int)):
             value = getattr(self, name)
@@ -162,6 +188,7 @@ class SceneSpec:
             "vn",
             "radius",
             "roughness",
+            "roughness_length",
             "k2_over_k1",
             "kb_over_ka",
             "wall_width",
@@ -189,6 +216,17 @@ class SceneSpec:
                 f"n_wall must be {N_WALL.describe()} or {WALL_DENSITY!r}, got {self.n_wall!r}"
             )
         ROUGHNESS.check("roughness", self.roughness)
+        if self.roughness_length != 0.0:
+            ROUGHNESS_LENGTH.check("roughness_length", self.roughness_length)
+            if self.surface_row != "even" or (
+                self.regular_surface == "lattice" and self.lattice != "random"
+            ):
+                raise InputError(
+                    "roughness_length applies to evenly spaced surface rows (surface_row even, "
+                    "regular_surface band), got surface_row "
+                    f"{self.surface_row}, regular_surface {self.regular_surface}"
+                )
+        require_choice("contact_scaling", self.contact_scaling, CONTACT_SCALINGS)
         K2_OVER_K1.check("k2_over_k1", self.k2_over_k1)
         KB_OVER_KA.check("kb_over_ka", self.kb_over_ka)
         require_choice("wall_fixed", self.wall_fixed, WALL_FIXED_CHOICES)
@@ -205,7 +243,7 @@ class SceneSpec:
                 f"{N_WALL.describe()}"
             )
         CONTACT_A.check("contact_a", self.contact_a)
-        require_contact_resolved(self.contact_a, self.wall_spacing)
+        require_contact_resolved(self.contact_decay * self.radius, self.wall_spacing, self)
         for name, choices in MODEL_READINGS.items():
             require_choice(name, getattr(self, name), choices)
         if self.regular_surface == "lattice":
@@ -230,7 +268,8 @@ class SceneSpec:
                     )
         else:
             for name in WALL_OPTIONS:
-                if getattr(self, name) != getattr(SceneSpec, name):
+                default = 2 * self.n_disk if name == "n_wall" else getattr(SceneSpec, name)
+                if getattr(self, name) != default:
                     raise InputError(
                         f"{name} applies to target wall; a binary scene (target disk) has no wall"
                     )
@@ -238,6 +277,28 @@ class SceneSpec:
                 require_choice("partner_lattice", self.partner_lattice, bodies.LATTICES)
             if self.partner_seed is not None:
                 SEED.check("partner_seed", self.partner_seed)
+
+    @property
+    def resolution_scale(self) -> float:
+        """The disk's spacing over the 800-point disk's, sqrt(800 / n_disk):
+        exactly 1 at 800 points."""
+        return math.sqrt(REFERENCE_N_DISK / self.n_disk)
+
+    @property
+    def contact_decay(self) -> float:
+        """The contact's a, per unit length: contact_a / R, over the resolution
+        scale with contact_scaling "spacing" (a times the spacing fixed)."""
+        a = self.contact_a / self.radius
+        return a / self.resolution_scale if self.contact_scaling == "spacing" else a
+
+    @property
+    def step_scale(self) -> float:
+        """What the time step is scaled by (dt "auto", runner.options): the
+        finer body's spacing over its spacing in the paper's scene, the
+        800-point disk on a 1,600-point 8 R x 2 R wall; exactly 1 there."""
+        reference = REFERENCE_N_DISK * 2 / (8.0 * 2.0)  # the paper's wall's points per R^2
+        wall = math.sqrt(reference * self.wall_width * self.wall_height / self.wall_points)
+        return min(self.resolution_scale, wall)
 
     @property
     def wall_spacing(self) -> float:
@@ -342,9 +403,14 @@ def speed_unit(spec: SceneSpec, spacing: float, ka_disk: float) -> float:
 
 def contact_energy(spec: SceneSpec, disk_points: int) -> float:
     """The contact's V0 = a m c^2 R / 2 (MODEL.md section 2), m one point's mass
-    or, with ``contact_mass`` "disk", the disk's (m = c = 1; a R = contact_a)."""
+    or, with ``contact_mass`` "disk", the disk's (m = c = 1; a R = contact_a).
+
+    With ``contact_scaling`` "spacing" V0 is that times the resolution scale,
+    sqrt(800 / n_disk): the contact's energy per length of surface, V0 over
+    the spacing, stays the 800-point disk's."""
     mass = float(disk_points) if spec.contact_mass == "disk" else 1.0
-    return spec.contact_a / 2.0 * mass
+    energy = spec.contact_a / 2.0 * mass
+    return energy * spec.resolution_scale if spec.contact_scaling == "spacing" else energy
 
 
 def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
@@ -373,6 +439,7 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
             spec.roughness,
             spec.wall_fixed,
             spec.roughness_direction,
+            spec.roughness_length,
         ),
     )
 
@@ -391,9 +458,9 @@ def _disk(lattice, seed, n_disk, roughness, k2_over_k1, *readings) -> Body:
 
 
 @lru_cache(maxsize=4)
-def _wall(seed, n_wall, width, height, roughness, wall_fixed, roughness_direction) -> Body:
+def _wall(seed, n_wall, width, height, roughness, wall_fixed, *readings) -> Body:
     rng = np.random.default_rng(_sample_seeds(seed)[1])
-    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed, roughness_direction)
+    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed, *readings)
 
 
 def place_disk(
@@ -468,6 +535,7 @@ def sample_disk(spec: SceneSpec) -> Body:
         spec.roughness_direction,
         spec.surface_row,
         spec.regular_surface,
+        spec.roughness_length,
     )
 
 
@@ -593,7 +661,7 @@ def scene_info(
     lengths = scene.natural_lengths
     row = scene.positions[:n_row]
     longest_segment = float(np.linalg.norm(np.diff(row, axis=0), axis=1).max())
-    a = spec.contact_a / R
+    a = spec.contact_decay
     return {
         "spec": asdict(spec),
         "units": units_info(spec, disk_material, disk.spacing * R, ka_disk),

@@ -75,11 +75,11 @@ def main(argv: list[str] | None = None) -> int:
 
             print(format_table([result]))
         else:
-            from runner.options import RunOptions
+            from runner.options import DEFAULT_DT, RunOptions
 
             from .validate import markdown, validate
 
-            options = RunOptions()
+            options = RunOptions(dt=DEFAULT_DT)
             out = require_out_folder("--out", args.out or runs_folder() / "validation")
             tables = validate(out, options)
             text = markdown(tables)

@@ -16,12 +16,14 @@ from builder.cli import (
     add_model_arguments,
     add_scene_arguments,
     add_wall_arguments,
+    roughness_length,
     spec_from_args,
     validate_spec,
 )
 from builder.errors import BuildError, InputError
 from builder.scene import (
     CONTACT_A,
+    CONTACT_SCALINGS,
     MODEL_READINGS,
     N_DISK,
     RADIUS,
@@ -34,8 +36,10 @@ from builder.scene import (
 from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
 from .lammps_run import LammpsError
 from .options import (
+    AUTO,
     CHECK_INTERVAL,
     CONTACTS,
+    DEFAULT_DT,
     DRIFT,
     DT,
     DUMP_EVERY,
@@ -79,14 +83,28 @@ def study_name(text: str) -> str:
 study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y")  # tests/test_bad_input.py
 
 
+def time_step(text: str) -> float | str:
+    """--dt: a step, or "auto" (runner.options.RunOptions.for_scene)."""
+    if text == AUTO:
+        return text
+    try:
+        return DT(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"must be {DT.describe()} or 'auto', got {text}") from None
+
+
+time_step.numbers = DT  # tests/test_bad_input.py feeds it bad numbers
+
+
 def add_run_arguments(parser) -> None:
     group = parser.add_argument_group("run")
     defaults = RunOptions()
     group.add_argument(
         "--dt",
-        type=DT,
+        type=time_step,
         default=defaults.dt,
-        help=f"time step, {DT.describe()} (default: {defaults.dt})",
+        help=f"time step, {DT.describe()}, or auto: {DEFAULT_DT:g} at 800 disk points, "
+        "scaled with the finer body's spacing (default: auto)",
     )
     group.add_argument(
         "--check",
@@ -94,7 +112,7 @@ def add_run_arguments(parser) -> None:
         default=defaults.check,
         help="steps between checks whether the impact is over, a multiple of the "
         f"series' rows; check * dt must be at most {MAX_CHUNK_TIME:g} R/c (default: the "
-        f"steps nearest {CHECK_INTERVAL:g} R/c, {defaults.check_steps} at the default dt)",
+        f"steps nearest {CHECK_INTERVAL:g} R/c, {defaults.check_steps} at dt {DEFAULT_DT:g})",
     )
     group.add_argument("--integrator", choices=INTEGRATORS, default=defaults.integrator)
     group.add_argument(
@@ -189,9 +207,9 @@ def unstable_hint(error: Exception, args) -> str:
     """For a run that blew up or let a disk point into the wall: the step and
     speed it ran at, and what to try."""
     text = str(error)
-    if not isinstance(error, LammpsError) or getattr(args, "dt", None) is None:
+    if not isinstance(error, LammpsError) or getattr(args, "dt", None) in (None, AUTO):
         return ""
-    default = RunOptions().dt
+    default = DEFAULT_DT
     if "inside the wall" in text:
         vn = f"v_n = {args.vn:g} c, " if getattr(args, "vn", None) is not None else ""
         return (
@@ -215,7 +233,7 @@ def warn_if_inaccurate(result: dict) -> None:
             f"python -m runner: warning: energy drift {result['energy_drift']:.3g} of the initial "
             f"kinetic energy exceeds --max-drift {result['max_drift']:g} at dt = {result['dt']:g} "
             f"R/c: the time step is too large for this scene, e and beta are inaccurate "
-            f"(default dt {RunOptions().dt:g}; docs/benchmarks/time_vs_error.md)",
+            f"(default dt {DEFAULT_DT:g} at 800 points; docs/benchmarks/time_vs_error.md)",
             file=sys.stderr,
         )
 
@@ -349,7 +367,9 @@ def add_study_arguments(study) -> None:
     add_cluster_arguments(study)
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
     scene = study.add_argument_group("the scene and the run (default: the study's)")
-    scene.add_argument("--dt", type=DT, default=None, help=f"time step, {DT.describe()}")
+    scene.add_argument(
+        "--dt", type=time_step, default=None, help=f"time step, {DT.describe()}, or auto"
+    )
     scene.add_argument(
         "--vn", type=VN, default=None, help=f"normal approach speed, {VN.describe()}"
     )
@@ -384,8 +404,20 @@ def add_study_arguments(study) -> None:
         "--contact-a",
         type=CONTACT_A,
         default=None,
-        help=f"contact decay rate, {CONTACT_A.describe()} (default: 300; 300 * sqrt(n_disk / "
-        "800) for finer disks)",
+        help=f"contact decay rate at 800 disk points, {CONTACT_A.describe()} (default: 300)",
+    )
+    scene.add_argument(
+        "--contact-scaling",
+        choices=CONTACT_SCALINGS,
+        default=None,
+        help="the contact as the disk is refined: spacing (a times the spacing held; "
+        "default) or fixed (the paper's a R at any resolution)",
+    )
+    scene.add_argument(
+        "--roughness-length",
+        type=roughness_length,
+        default=None,
+        help="the roughness's correlation length, R (0: each point on its own; default)",
     )
     add_wall_arguments(scene, defaults=False)
     scene.add_argument(
@@ -635,9 +667,11 @@ STUDY_OPTIONS = (
     "vn",
     "speeds",
     "roughness",
+    "roughness_length",
     "n_disk",
     "radius",
     "contact_a",
+    "contact_scaling",
     "n_wall",
     "wall_ka",
     "wall_fixed",

@@ -128,6 +128,8 @@ def run_scene(
         )
     for name in RUN_OUTPUTS:
         (folder / name).unlink(missing_ok=True)
+    options = options.for_scene(scene_spec(scene))
+    options.validate()
 
     variables = {"scene": str(folder), "out": str(folder)}
     variables.update(options.deck_variables())
@@ -152,6 +154,12 @@ def run_scene(
         raise LammpsError(f"non-finite results ({', '.join(bad)}); no result written")
     write_json_atomically(result, folder / "result.json")
     return result
+
+
+def scene_spec(scene: dict) -> SceneSpec:
+    """The SceneSpec a scene.json records (fields it lacks take their defaults)."""
+    known = SceneSpec.__dataclass_fields__
+    return SceneSpec(**{k: v for k, v in scene["spec"].items() if k in known})
 
 
 def run_impact(spec: SceneSpec, folder: Path | str, options: RunOptions) -> dict:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 from analysis.result import MAX_DRIFT
 from builder.checks import Range
@@ -27,6 +27,11 @@ RESPA_DT, RESPA_NRESPA = 0.016, 8
 # The ranges of the run's numbers, for RunOptions.validate and the command
 # line alike. No scene runs above dt 0.032 (docs/benchmarks/stability.md).
 DT = Range(1e-5, 0.05, unit="R/c")
+# The step at the 800-point disk (docs/benchmarks/time_vs_error.md); dt "auto"
+# takes it times the scene's step scale, which follows the finer body's
+# spacing (builder.scene.SceneSpec.step_scale): 0.002 at 12,800 points.
+DEFAULT_DT = 0.008
+AUTO = "auto"
 TMAX = Range(0.0, 10_000.0, low_open=True, unit="R/c")
 NRESPA = Range(1, 100, integer=True)
 STEPS = Range(1, 10_000_000, integer=True)  # every, check
@@ -37,7 +42,9 @@ DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
 
 @dataclass
 class RunOptions:
-    dt: float = 0.008  # time step, R / c (docs/benchmarks/time_vs_error.md); respa: the outer one
+    # time step, R / c, or "auto": DEFAULT_DT at 800 points, following the
+    # spacing (``for_scene``); respa: the outer one
+    dt: float | str = AUTO
     # verlet: velocity Verlet, everything at dt; respa: rRESPA, the springs at dt
     # and the contact alone on the inner level at dt / nrespa (decks/setup.lmp)
     integrator: str = "verlet"
@@ -59,8 +66,22 @@ class RunOptions:
         MAX_DRIFT  # energy drift above which a result is flagged (analysis/result.py)
     )
 
+    def for_scene(self, spec) -> RunOptions:
+        """These options with dt "auto" made the scene's step: DEFAULT_DT times
+        ``spec.step_scale`` (a builder.scene.SceneSpec), exactly DEFAULT_DT at
+        the 800-point disk on its 1,600-point wall."""
+        if self.dt != AUTO:
+            return self
+        return replace(self, dt=DEFAULT_DT * spec.step_scale)
+
+    @property
+    def step(self) -> float:
+        """dt as a number: an "auto" step is DEFAULT_DT's (the 800-point disk's)."""
+        return DEFAULT_DT if self.dt == AUTO else self.dt
+
     def validate(self) -> None:
-        DT.check("dt", self.dt)
+        if self.dt != AUTO:
+            DT.check("dt (or 'auto')", self.dt)
         require_choice("integrator", self.integrator, INTEGRATORS)
         NRESPA.check("nrespa", self.nrespa)
         require_choice("contact", self.contact, CONTACTS)
@@ -73,20 +94,20 @@ class RunOptions:
             if value != 0:
                 STEPS.check(f"{name} (0 for the default)", value)
         NPROCS.check("nprocs", self.nprocs)
-        if self.tmax / self.dt > STEPS.high:
+        if self.tmax / self.step > STEPS.high:
             raise InputError(
                 f"tmax / dt must be at most {STEPS.high:.0e} steps, got {self.tmax:g} / "
-                f"{self.dt:g}; give a larger dt or a smaller tmax"
+                f"{self.step:g}; give a larger dt or a smaller tmax"
             )
         every, check = self.every_steps, self.check_steps
         # the deck learns that the disk has touched from the contact energy at its
         # checks: checks farther apart than a contact lasts (9 R/c and more)
         # could miss it whole, and the run would never stop
-        if check * self.dt > MAX_CHUNK_TIME:
+        if check * self.step > MAX_CHUNK_TIME:
             raise InputError(
                 f"check * dt must be at most {MAX_CHUNK_TIME:g} R/c (checks closer "
-                f"than any contact lasts), got {check} * {self.dt:g} = "
-                f"{check * self.dt:g}; give a smaller check"
+                f"than any contact lasts), got {check} * {self.step:g} = "
+                f"{check * self.step:g}; give a smaller check"
             )
         if check % every:
             raise InputError(f"check must be a multiple of every ({every}), got {check}")
@@ -104,20 +125,22 @@ class RunOptions:
     @property
     def every_steps(self) -> int:
         """Steps between rows of series.dat: every, or SERIES_INTERVAL's."""
-        return self.every or max(1, round(SERIES_INTERVAL / self.dt))
+        return self.every or max(1, round(SERIES_INTERVAL / self.step))
 
     @property
     def check_steps(self) -> int:
         """Steps between checks for the end: check, or the multiple of every
         nearest CHECK_INTERVAL."""
         every = self.every_steps
-        return self.check or every * max(1, round(CHECK_INTERVAL / (every * self.dt)))
+        return self.check or every * max(1, round(CHECK_INTERVAL / (every * self.step)))
 
     def as_dict(self) -> dict:
         return asdict(self)
 
     def deck_variables(self) -> dict[str, str]:
-        """The deck's index variables for these options."""
+        """The deck's index variables for these options (dt a number: ``for_scene``)."""
+        if self.dt == AUTO:
+            raise ValueError("dt 'auto' is a scene's step: RunOptions.for_scene first")
         names = (
             "dt",
             "integrator",

@@ -71,7 +71,10 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     setup = setup_of(name, described)
     out = tables_folder(name, described, args.docs)
     studies = axis_studies(described.study, described.axes, name, described.sweep)
-    by_label = {module.label(c): (c, s) for c, s in zip(setup.choices, studies, strict=True)}
+    pairs = list(zip(setup.choices, studies, strict=True))
+    if hasattr(module, "plan"):  # the kind thins its grid (fewer seeds where impacts cost more)
+        pairs = [(c, planned) for c, s in pairs if (planned := module.plan(c, s)) is not None]
+    by_label = {module.label(c): (c, s) for c, s in pairs}
     for _, study in by_label.values():  # every study of the run, before the first starts
         study.validate()
 

@@ -118,9 +118,12 @@ class Study:
     n_disk: int = 800
     radius: float = SceneSpec.radius  # R; lengths and times scale with it
     roughness: float = SceneSpec.roughness
+    roughness_length: float = SceneSpec.roughness_length  # R; 0: each point on its own
     wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
-    contact_a: float = 300.0  # a R; finer disks need more (docs/contact.md)
-    n_wall: int | str = SceneSpec.n_wall  # the reading of the wall (MODEL.md section 8)
+    contact_a: float = 300.0  # a R at 800 points (contact_scaling spacing: docs/model.md)
+    contact_scaling: str = SceneSpec.contact_scaling
+    # the reading of the wall (MODEL.md section 8); None: twice the disk's points
+    n_wall: int | str | None = SceneSpec.n_wall
     wall_ka: float | str = SceneSpec.wall_ka
     wall_fixed: str = SceneSpec.wall_fixed
     # the readings of the model (MODEL.md section 8; builder.scene.MODEL_READINGS)
@@ -260,8 +263,10 @@ class Study:
             radius=self.radius,
             n_disk=self.n_disk,
             roughness=self.roughness,
+            roughness_length=self.roughness_length,
             wall_width=self.wall_width,
             contact_a=self.contact_a,
+            contact_scaling=self.contact_scaling,
             n_wall=self.n_wall,
             wall_ka=self.wall_ka,
             wall_fixed=self.wall_fixed,
@@ -411,10 +416,12 @@ def study_from_args(args) -> Study:
             "angles",
             "vn",
             "roughness",
+            "roughness_length",
             "n_disk",
             "radius",
             "wall_width",
             "contact_a",
+            "contact_scaling",
             "n_wall",
             "wall_ka",
             "wall_fixed",

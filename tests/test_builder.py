@@ -175,7 +175,10 @@ def test_same_seed_same_files(tmp_path):
         ("lattice", "hexagonal", "lattice must be one of random, triangular, square"),
         ("vn", 1.5, "vn must be a number in (0, 1)"),
         ("wall_fixed", "top", "wall_fixed must be one of"),
-        ("contact_a", 50.0, "contact_a must be >= "),
+        ("contact_a", 50.0, "contact_a must make a R >= "),
+        ("roughness_length", 0.001, "roughness_length must be a number in [0.005, 1]"),
+        ("roughness_length", -0.1, "roughness_length must be a number in [0.005, 1]"),
+        ("contact_scaling", "linear", "contact_scaling must be one of spacing, fixed"),
     ],
 )
 def test_bad_spec(field, value, words):
