@@ -47,6 +47,7 @@ from .options import (
     MAX_CHUNK_TIME,
     NPROCS,
     NRESPA,
+    RANKS,
     ROUTES,
     RULES,
     SPRINGS,
@@ -534,7 +535,16 @@ def add_cluster_arguments(study) -> None:
         "--workers",
         type=WORKERS,
         default=None,
-        help=f"local worker processes, {WORKERS.describe()} (default: this machine's cores)",
+        help=f"local worker processes, {WORKERS.describe()} (default: this machine's cores, "
+        "over --ranks)",
+    )
+    group.add_argument(
+        "--ranks",
+        type=RANKS,
+        default=None,
+        help=f"MPI ranks per impact, {RANKS.describe()}, a worker owning as many cores: lmp "
+        "under mpirun (slurm: srun --mpi=pmix in the job) (default: the study's: its file's "
+        "[run] ranks, or 1)",
     )
     group.add_argument(
         "--jobs", type=JOBS, default=None, help=f"slurm: batch jobs, {JOBS.describe()} (default: 1)"
@@ -543,8 +553,8 @@ def add_cluster_arguments(study) -> None:
         "--cores-per-job",
         type=CORES_PER_JOB,
         default=None,
-        help=f"slurm: cores per job, a worker process on each, {CORES_PER_JOB.describe()} "
-        "(default: 1)",
+        help=f"slurm: cores per job, a worker process on each (on each --ranks of them), "
+        f"{CORES_PER_JOB.describe()} (default: 1)",
     )
     group.add_argument(
         "--walltime", type=walltime, default=None, help="slurm: each job's time limit, HH:MM:SS"
@@ -654,6 +664,7 @@ SWEEP_OPTIONS = {
     "cluster": None,
     "workers": None,
     "scheduler": None,
+    "ranks": None,
     **dict.fromkeys(SLURM_ONLY),
     "retry_failed": False,
 }

@@ -3,8 +3,11 @@ jobs (dask-jobqueue), or a Dask cluster that is already running.
 
 Every worker is a process with one thread: LAMMPS runs in it, in-process, and
 an error of Debian's LAMMPS ends the process, which the worker's nanny starts
-again. What the cluster's scheduler counts as failures does not decide
-anything here (runner.tasks does): clusters made here let a task be retried
+again. A study whose impacts run on k MPI ranks each (``ranks``) has a worker
+per k cores instead, which runs lmp under mpirun (in a Slurm job, under
+``srun --mpi=pmix``, a step of the job's own cores) and waits for it. What
+the cluster's scheduler counts as failures does not decide anything here
+(runner.tasks does): clusters made here let a task be retried
 ALLOWED_FAILURES times before the scheduler gives it up.
 """
 
@@ -43,6 +46,10 @@ HOUSEKEEPING = {
 # folders (runs, the Poisson cache) and Open MPI's leave to run as root.
 PASSED_ON = ("IMPACT_RUNS", "IMPACT_POISSON_CACHE", "OMPI_ALLOW_RUN_AS_ROOT",
              "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM")  # fmt: skip
+# How a Slurm job's workers start an impact's ranks (runner.lammps_run.mpi_launcher)
+# unless IMPACT_MPIRUN says otherwise: a step of the job's own cores. OpenMPI's
+# direct launch needs PMIx; a plain srun fails on Debian 12's Slurm 22.05.
+SLURM_MPIRUN = "srun --mpi=pmix"
 
 
 @dataclass(frozen=True)
@@ -52,28 +59,62 @@ class ClusterSpec:
     kind: str = "local"
     workers: int | None = None  # local: worker processes (None: this machine's cores)
     jobs: int = 1  # slurm: batch jobs
-    cores_per_job: int = 1  # slurm: worker processes (one core each) per job
+    cores_per_job: int = 1  # slurm: cores per job, a worker process per `ranks` of them
     walltime: str | None = None  # slurm: HH:MM:SS (None: dask-jobqueue's config)
     queue: str | None = None
     account: str | None = None
     memory: str | None = None  # slurm: per job (None: the site's default, --mem left out)
     scheduler: str | None = None  # a running cluster's address or scheduler file
     log_directory: Path | None = None  # slurm: the jobs' output files
+    ranks: int = 1  # MPI ranks per impact: cores each worker owns (the study's)
 
     def size(self) -> int:
         """How many workers the spec asks for (a joined cluster: 0, unknown)."""
         if self.scheduler:
             return 0
         if self.kind == "slurm":
-            return self.jobs * self.cores_per_job
-        return self.workers or os.cpu_count() or 1
+            return self.jobs * (self.cores_per_job // self.ranks)
+        return self.workers or max(1, (os.cpu_count() or 1) // self.ranks)
+
+    def check_ranks(self) -> None:
+        """Refuse ranks that its workers' cores cannot hold: more than this
+        machine's cores (local, with --workers: workers x ranks), or not a
+        divisor of --cores-per-job (slurm). A joined cluster's are its own.
+
+        Raises
+        ------
+        builder.errors.InputError
+            One line naming --ranks, the cores and what would fit.
+        """
+        said = f"ranks {self.ranks} (--ranks, or the study file's [run] ranks)"
+        if self.scheduler or self.ranks == 1:
+            return
+        if self.kind == "slurm":
+            if self.cores_per_job % self.ranks:
+                raise InputError(
+                    f"{said}: --cores-per-job must be a multiple of it (each worker owns "
+                    f"ranks cores of its job), got {self.cores_per_job}"
+                )
+            return
+        cores = os.cpu_count() or 1
+        if self.ranks > cores:
+            raise InputError(f"{said} must be at most this machine's {cores} cores")
+        if self.workers and self.workers * self.ranks > cores:
+            raise InputError(
+                f"--workers {self.workers} x {said} = {self.workers * self.ranks} cores, more "
+                f"than this machine's {cores}: give --workers {cores // self.ranks} or leave it out"
+            )
 
 
-def worker_environment() -> list[str]:
+def worker_environment(ranks: int = 1) -> list[str]:
     """Shell lines a Slurm job runs before its workers: this interpreter's
-    folder first on PATH (the lammps module's and lmp's Python), and PASSED_ON."""
+    folder first on PATH (the lammps module's and lmp's Python), PASSED_ON,
+    and for impacts on several ranks IMPACT_MPIRUN (this process's, or
+    SLURM_MPIRUN)."""
     lines = [f'export PATH="{Path(sys.executable).parent}:$PATH"']
     lines += [f'export {name}="{os.environ[name]}"' for name in PASSED_ON if name in os.environ]
+    if ranks > 1:
+        lines.append(f'export IMPACT_MPIRUN="{os.environ.get("IMPACT_MPIRUN") or SLURM_MPIRUN}"')
     return lines
 
 
@@ -97,15 +138,17 @@ def make_cluster(spec: ClusterSpec):
     options = {"walltime": spec.walltime, "queue": spec.queue, "account": spec.account}
     if spec.log_directory:
         spec.log_directory.mkdir(parents=True, exist_ok=True)
+    workers = spec.cores_per_job // spec.ranks
     cluster = SLURMCluster(
-        cores=spec.cores_per_job,
-        processes=spec.cores_per_job,  # one thread per worker
+        cores=workers,
+        processes=workers,  # one thread per worker
+        job_cpu=spec.cores_per_job,  # --cpus-per-task: a worker's ranks are srun steps of these
         # Dask's memory limit needs a figure; Slurm's --mem is left to the
         # site's default unless --memory is given
         memory=spec.memory or f"{spec.cores_per_job}GiB",
         job_directives_skip=[] if spec.memory else ["--mem"],
         python=sys.executable,
-        job_script_prologue=worker_environment(),
+        job_script_prologue=worker_environment(spec.ranks),
         log_directory=str(spec.log_directory) if spec.log_directory else None,
         silence_logs=logging.ERROR,
         scheduler_options={"dashboard_address": ":8787"},

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import shutil
 import time
+from dataclasses import replace
 
 from .clusters import ClusterSpec, dask_client, replace_ended_jobs
 from .study import BODIES_FOLDER, Study, state
@@ -98,7 +99,9 @@ def run_study(
         Run on this client's cluster (a notebook's, a dask-mpi allocation's).
     cluster : ClusterSpec, optional
         The cluster to make or join (runner.clusters); ``workers`` is its
-        shorthand for a local one.
+        shorthand for a local one. Its workers own the study's MPI ranks
+        per impact (``study.options.nprocs``) each; ranks they cannot hold
+        are refused before anything is written.
 
     Returns
     -------
@@ -107,6 +110,9 @@ def run_study(
         ran (how many were to run), and where the workers' and the driver's
         time went.
     """
+    spec = replace(cluster or ClusterSpec(workers=workers), ranks=study.options.nprocs)
+    if client is None:
+        spec.check_ranks()
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
     print(
@@ -120,7 +126,6 @@ def run_study(
             if client is not None:
                 counts.update(drive(study, jobs, todo, client))
             else:
-                spec = cluster or ClusterSpec(workers=workers)
                 with dask_client(spec) as own:
                     counts.update(drive(study, jobs, todo, own, spec.size()))
     finally:
@@ -141,7 +146,8 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
         client.wait_for_workers(1)
         workers = sum(client.nthreads().values())
     groups = [[todo[i] for i in group] for group in job_groups(todo, workers)]
-    print(f"  on {workers} Dask workers; dashboard: {client.dashboard_link}", flush=True)
+    ranks = f", {study.options.nprocs} MPI ranks each" if study.options.nprocs > 1 else ""
+    print(f"  on {workers} Dask workers{ranks}; dashboard: {client.dashboard_link}", flush=True)
     progress = Progress(len(jobs), len(jobs) - len(todo))
     spent = WorkerTime()
     resubmits = {index: RESUBMITS_PER_IMPACT * len(group) for index, group in enumerate(groups)}

@@ -14,7 +14,7 @@ from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 
-from .lammps_run import LammpsError, lammps_version, run_lmp, run_python
+from .lammps_run import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
 from .options import RunOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -144,6 +144,8 @@ def run_scene(
         "options": options.as_dict(),
         "deck_overrides": deck_overrides or {},
         "wall_seconds": seconds,
+        # how the ranks were started: mpirun, IMPACT_MPIRUN's srun, '' for one
+        "launcher": " ".join(mpi_launcher(options.nprocs)) if options.route == "lmp" else "",
         "lammps_version": lammps_version(log),
         "git_revision": git_revision(),
     }

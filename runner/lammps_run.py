@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import ctypes
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -81,7 +83,32 @@ def mpi_launcher(nprocs: int) -> list[str]:
     # By name, not by its full path: Open MPI's mpirun called as /usr/bin/mpirun
     # acts as if given --prefix /usr and puts /usr/bin first on the ranks' PATH,
     # so lmp's embedded Python would start from Debian's python3, not ours.
-    return ["mpirun", "-np", str(nprocs)]
+    # Unbound: Open MPI binds up to 2 ranks to the first cores by default, and
+    # so every one of a study's workers' mpiruns would, onto the same cores.
+    return ["mpirun", "--bind-to", "none", "-np", str(nprocs)]
+
+
+# Linux's prctl, to end lmp (or mpirun, which ends its ranks) with the process
+# that started it: a study's worker killed from outside must not leave its
+# impact's LAMMPS running, writing into the folder the impact's next start uses.
+PR_SET_PDEATHSIG = 1
+_PRCTL = getattr(ctypes.CDLL(None), "prctl", None) if sys.platform == "linux" else None
+
+
+def ends_with_parent():
+    """A ``preexec_fn`` that has the child sent SIGTERM when the thread that
+    started it ends (it waits for the child, so: when its process ends), or
+    None where there is no prctl."""
+    if _PRCTL is None:
+        return None
+    parent = os.getpid()
+
+    def arm() -> None:
+        _PRCTL(PR_SET_PDEATHSIG, int(signal.SIGTERM))
+        if os.getppid() != parent:  # the parent ended before the signal was armed
+            os._exit(1)
+
+    return arm
 
 
 def _inherited_mpi_job(name: str) -> bool:
@@ -138,6 +165,7 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
         capture_output=True,
         text=True,
         env=mpi_environment(),
+        preexec_fn=ends_with_parent(),  # it calls prctl alone: no lock a thread could hold
     )
     elapsed = time.perf_counter() - start
     if proc.returncode != 0:

@@ -37,6 +37,7 @@ NRESPA = Range(1, 100, integer=True)
 STEPS = Range(1, 10_000_000, integer=True)  # every, check
 DUMP_EVERY = Range(0, 10_000_000, integer=True)
 NPROCS = Range(1, 4096, integer=True)
+RANKS = NPROCS  # a study's MPI ranks per impact ([run] ranks, --ranks)
 DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
 
 
@@ -159,3 +160,25 @@ class RunOptions:
             name: repr(values[name]) if isinstance(values[name], float) else str(values[name])
             for name in names
         }
+
+
+def on_ranks(options: RunOptions, ranks: int) -> RunOptions:
+    """``options`` with each impact on ``ranks`` MPI ranks.
+
+    More than one rank runs the deck with lmp under mpirun (or IMPACT_MPIRUN),
+    as ``runner impact --np`` does: Debian's lammps module runs one rank in
+    the calling process, which is a study's route on one rank.
+
+    Parameters
+    ----------
+    options : RunOptions
+        A study's run options.
+    ranks : int
+        MPI ranks per impact, ``RANKS``.
+
+    Returns
+    -------
+    RunOptions
+        A copy with ``nprocs`` and ``route`` set.
+    """
+    return replace(options, nprocs=ranks, route="lmp" if ranks > 1 else "python")

@@ -34,7 +34,7 @@ from builder.scene import (
 
 from .lammps_run import ROOT as LAMMPS_ROOT
 from .lammps_run import STYLE_LIBRARIES, data_to_restart
-from .options import RunOptions
+from .options import RunOptions, on_ranks
 
 ROOT = Path(__file__).resolve().parents[1]
 LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
@@ -301,13 +301,17 @@ class Study:
     def build(self, job: dict) -> Path:
         """The job's scene, written afresh into its folder (an impact killed
         half-way starts over); a result moved aside stays. The data file is
-        its sample's bodies, written once per process (``SAMPLE_BODIES``)."""
+        its sample's bodies, written once per process (``SAMPLE_BODIES``);
+        on several ranks, the impact's own placed scene."""
         folder = Path(job["folder"])
         folder.mkdir(parents=True, exist_ok=True)
         for path in folder.iterdir():
             if path.name not in (*SET_ASIDE, STARTED):
                 shutil.rmtree(path) if path.is_dir() else path.unlink()
         scene = build_scene(self.spec(job))
+        if self.options.nprocs > 1:  # the placed scene, as runner impact --np runs it: on
+            # several ranks the bodies' restart has another box, so another decomposition
+            return write_scene(scene, folder, self.options.springs)
         bodies = SAMPLE_BODIES.path(scene, self.options.springs, self.folder, folder / "log.lammps")
         return write_scene(scene, folder, self.options.springs, bodies=bodies, restart=True)
 
@@ -457,6 +461,8 @@ def study_from_args(args) -> Study:
     }
     if options:
         changes["options"] = replace(base.options, **options)
+    if getattr(args, "ranks", None) is not None:
+        changes["options"] = on_ranks(changes.get("options", base.options), args.ranks)
     study = replace(base, **changes)
     if existing:
         before, after = base.grid(), study.grid()

@@ -12,7 +12,9 @@
     samples = 100
     vn = 0.1                         # or speeds = [...]: a folder per speed
     [scene]                          # builder.scene's readings, n_disk, ...
-    [run]                            # runner.options.RunOptions: dt, ...
+    [run]                            # runner.options.RunOptions: dt, ...; and
+    ranks = 2                        # MPI ranks per impact (lmp under mpirun, or
+                                     # srun in a Slurm job), a worker owning as many cores
 
 Every key is a field of ``runner.study.Study`` (grid and scene) or of
 ``RunOptions`` (run); what a file leaves out takes the default. The study's
@@ -60,7 +62,7 @@ from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
 from builder.scene import ANGLE
 
-from .options import RunOptions
+from .options import RANKS, RunOptions, on_ranks
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
@@ -167,7 +169,7 @@ def read_study_file(path: Path) -> StudyFile:
     allowed = {
         "grid": set(GRID),
         "scene": (study_fields - set(GRID)) | set(NAMED),
-        "run": {f.name for f in fields(RunOptions)},
+        "run": {f.name for f in fields(RunOptions)} | {"ranks"},
     }
     values: dict = {}
     axes: dict = {}
@@ -181,6 +183,8 @@ def read_study_file(path: Path) -> StudyFile:
                     f"{path}: [{section}] has no option {key!r}; options: "
                     f"{', '.join(sorted(allowed[section]))}"
                 )
+            if (section, key) == ("run", "ranks"):  # one value: not an axis
+                RANKS.check(f"{path}: [run] ranks (MPI ranks per impact)", value)
             if key in LISTS and not isinstance(value, list):
                 raise InputError(f"{path}: [{section}] {key} must be a list, got {value!r}")
             for name in value if isinstance(value, list) and key in NAMED else [value]:
@@ -225,8 +229,13 @@ def read_study_file(path: Path) -> StudyFile:
     if "cot_gamma" in grid:
         grid.setdefault("angles", len(grid["cot_gamma"]))
     run = {k: v for (s, k), v in values.items() if s == "run"}
+    ranks = run.pop("ranks", None)
+    if ranks is not None and (both := sorted({"nprocs", "route"} & set(run))):
+        raise InputError(f"{path}: [run] gives ranks and {both[0]}, which it sets; give one")
     try:
-        study = Study(name=path.stem, **grid, options=replace(RunOptions(route="python"), **run))
+        options = replace(RunOptions(route="python"), **run)
+        options = options if ranks is None else on_ranks(options, ranks)
+        study = Study(name=path.stem, **grid, options=options)
     except TypeError as error:
         raise InputError(f"{path}: {error}") from None
     axes = {key: values for (section, key), values in axes.items()}
@@ -350,7 +359,12 @@ def study_file_text(described: StudyFile) -> str:
         if option.name in axes or value != getattr(default, option.name):
             section = "grid" if option.name in GRID else "scene"
             sections[section].append(f"{option.name} = {toml_value(value)}")
+    ranks = study.options.nprocs if study.options.route == "lmp" else 1
+    if ranks > 1:  # [run] ranks stands for the two options it sets
+        sections["run"].append(f"ranks = {ranks}")
     for option in fields(RunOptions):
+        if ranks > 1 and option.name in ("nprocs", "route"):
+            continue
         value = axes.get(option.name, getattr(study.options, option.name))
         if option.name in axes or value != getattr(run_default, option.name):
             sections["run"].append(f"{option.name} = {toml_value(value)}")

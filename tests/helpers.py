@@ -75,3 +75,65 @@ def stop_by_pid(processes: list[subprocess.Popen], seconds: float = 30) -> None:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+
+
+# A study whose impacts run on two MPI ranks each ([run] ranks), small enough
+# to add seconds: two angles of one sample of a 200-point disk.
+RANKS_STUDY = """\
+[grid]
+lattices = ["random"]
+cot_gamma = [1.0, 0.3]
+samples = 1
+[scene]
+n_disk = 200
+[run]
+ranks = 2
+"""
+
+
+def study_on_ranks(folder: Path, name: str, *extra: str, env: dict | None = None):
+    """RANKS_STUDY, written into ``folder``, run as the study ``name`` from a
+    clean folder; its impacts.csv rows (csv.DictReader's strings)."""
+    import csv
+
+    path = folder / f"{name}.toml"
+    path.write_text(RANKS_STUDY)
+    shutil.rmtree(RUNS / name, ignore_errors=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "runner", "study", str(path), *extra],
+        cwd=ROOT, capture_output=True, text=True, timeout=600, env=env,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    with (RUNS / name / "impacts.csv").open() as handle:
+        return list(csv.DictReader(handle))
+
+
+def impact_rows_on_ranks(rows: list[dict], folder: Path, ranks: int = 2) -> list[dict]:
+    """The same impacts (lattice, seed, angle of each row) by `runner impact
+    --np ranks`, mpirun's, as impacts.csv rows: analysis.table's collect and
+    write_csv, as a study writes its own."""
+    import csv
+
+    from analysis.table import collect, write_csv
+
+    done = []
+    for row in rows:
+        out = folder / f"impact_{row['lattice']}_s{row['seed']}_g{row['gamma_deg']}"
+        proc = subprocess.run(
+            [sys.executable, "-m", "runner", "impact", "--lattice", row["lattice"],
+             "--seed", row["seed"], "--gamma", row["gamma_deg"], "--n-disk", "200",
+             "--np", str(ranks), "--out", str(out)],
+            cwd=ROOT, capture_output=True, text=True, timeout=600,
+            env={k: v for k, v in os.environ.items() if k != "IMPACT_MPIRUN"},
+        )  # fmt: skip
+        assert proc.returncode == 0, proc.stderr
+        done.append((row["study_lattice"], out))
+    write_csv(collect(done), folder / "impacts.csv")
+    with (folder / "impacts.csv").open() as handle:
+        return list(csv.DictReader(handle))
+
+
+def without_times(rows: list[dict]) -> list[dict]:
+    """Every column but LAMMPS's wall-clock seconds: the physics (e, beta,
+    omega, steps, drift, ...), the readings, and what ran them."""
+    return [{k: v for k, v in row.items() if k != "wall_seconds"} for row in rows]

@@ -10,13 +10,22 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 import time
 
 import pytest
 
-from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario
+from tests.helpers import (
+    ROOT,
+    RUNS,
+    genuine_failures,
+    impact_rows_on_ranks,
+    run_crash_scenario,
+    study_on_ranks,
+    without_times,
+)
 from tests.local_slurm import SlurmUnavailable, one_node_slurm, why_not
 
 SMALL_STUDY = ["--lattices", "random", "--angles", "4", "--samples", "2", "--n-disk", "200"]
@@ -138,3 +147,18 @@ def test_one_impact_on_two_ranks_under_srun_gives_mpiruns_result(slurm, tmp_path
         results[launcher or "mpirun"] = (result["e"], result["beta"], result["steps"])
         assert " on 2 procs for " in (out / "log.lammps").read_text()  # two ranks, each way
     assert results["srun --mpi=pmix"] == results["mpirun"]
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="two ranks need two cores")
+def test_a_study_on_two_ranks_under_srun_gives_runner_impacts_rows(slurm, tmp_path):
+    """[run] ranks = 2 on Slurm: each job's worker owns 2 cores and starts
+    each impact as a step of them (srun --mpi=pmix); the rows are those of
+    `runner impact --np 2` under mpirun, bit for bit."""
+    name = "test_slurm_ranks"
+    rows = study_on_ranks(tmp_path, name, *ON_SLURM, env=slurm)
+    assert len(rows) == 2
+    assert without_times(rows) == without_times(impact_rows_on_ranks(rows, tmp_path))
+    for run in (RUNS / name).rglob("run.json"):
+        assert json.loads(run.read_text())["launcher"] == "srun --mpi=pmix -n 2"
+    worker = "".join(path.read_text() for path in (RUNS / name / "slurm").glob("*.err"))
+    assert len(re.findall(r"Threads:\s+1\n", worker)) == 1  # one worker, an impact at a time
