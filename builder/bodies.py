@@ -16,7 +16,7 @@ from scipy.spatial import Delaunay
 from scipy.stats import qmc
 
 from .errors import BuildError, InputError
-from .geometry import distance_to_polyline, inside_polygon
+from .geometry import Polyline, inside_polygon
 from .network import triangulate_body, unique_edges
 from .sample_cache import cached_draw
 
@@ -106,9 +106,10 @@ def regular_points(lattice: str, spacing: float, half_width: float) -> np.ndarra
 
 def keep_clear(candidates: np.ndarray, outline: np.ndarray, clearance: float) -> np.ndarray:
     """Candidates inside the closed outline and at least ``clearance`` from it."""
-    inside = inside_polygon(candidates, outline)
-    far = distance_to_polyline(candidates, outline, closed=True) >= clearance
-    return candidates[inside & far]
+    far = ~Polyline(outline, closed=True).closer_than(candidates, clearance)
+    # only the far ones can be kept: the polygon test is the costlier
+    far[far] = inside_polygon(candidates[far], outline)
+    return candidates[far]
 
 
 def square_springs(points: np.ndarray, lattice: np.ndarray, spacing: float, k2_over_k1: float):

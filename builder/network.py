@@ -28,9 +28,21 @@ INCIRCLE_TOLERANCE = 1e-10
 
 
 def unique_edges(triangles: np.ndarray) -> np.ndarray:
-    """The distinct edges of a set of triangles, as sorted index pairs."""
+    """The distinct edges of a set of triangles, as sorted index pairs in
+    lexicographic order (``np.unique(..., axis=0)``'s, in the triangles' dtype)."""
     edges = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
-    return np.unique(np.sort(edges, axis=1), axis=0)
+    edges = np.sort(edges, axis=1)
+    # One integer per pair sorts as the pairs do, and a 1-D unique is far
+    # quicker than np.unique over rows.
+    size = int(edges.max()) + 1 if len(edges) else 1
+    key = np.unique(edges[:, 0].astype(np.int64) * size + edges[:, 1])
+    return np.stack([key // size, key % size], axis=1).astype(triangles.dtype, copy=False)
+
+
+def edge_keys(edges: np.ndarray, size: int) -> np.ndarray:
+    """One integer per sorted index pair (points fewer than ``size``)."""
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    return edges[:, 0] * size + edges[:, 1]
 
 
 def outline_edges(outline: np.ndarray) -> np.ndarray:
@@ -71,8 +83,9 @@ def triangulate_body(
     # triangle lies wholly inside or wholly outside the body, so the centroid
     # test alone trims it, and no length prune is needed: the long triangles
     # left are the roughness's own steps.
-    delaunay = {tuple(e) for e in unique_edges(triangles).tolist()}
-    steep = [e for e in missing if e not in delaunay]
+    delaunay = edge_keys(unique_edges(triangles), len(points))
+    known = np.isin(edge_keys(missing, len(points)), delaunay)
+    steep = [e for e, is_edge in zip(missing, known.tolist()) if not is_edge]
     if steep:
         triangles = constrain(points, triangles, steep, [tuple(e) for e in boundary.tolist()])
     inside = inside_polygon(points[triangles].mean(axis=1), points[outline])
@@ -91,8 +104,9 @@ def triangulate_body(
 
 def _missing(springs: np.ndarray, boundary: np.ndarray) -> list[tuple[int, int]]:
     """The outline segments that are not springs: a spring would cross the surface there."""
-    present = {tuple(e) for e in springs.tolist()}
-    return [tuple(e) for e in boundary.tolist() if tuple(e) not in present]
+    size = int(max(springs.max(initial=0), boundary.max(initial=0))) + 1
+    absent = ~np.isin(edge_keys(boundary, size), edge_keys(springs, size))
+    return [tuple(e) for e in boundary[absent].tolist()]
 
 
 def _all_bonded(springs: np.ndarray, n_points: int) -> bool:
@@ -116,18 +130,40 @@ class _Mesh:
 
     def __init__(self, points: np.ndarray, triangles: np.ndarray) -> None:
         self.points = points
+        self.xy = points.tolist()  # plain floats, for the bounding boxes of ``crossing``
         self.triangles: dict[int, tuple[int, int, int]] = {}
         self.edges: dict[tuple[int, int], list[int]] = {}
+        # when each edge entered ``edges`` (dict order, which ``crossing`` keeps)
+        self.born: dict[tuple[int, int], int] = {}
+        self.around: dict[int, set[int]] = {}  # each point's triangles
         self.next_id = 0
-        for triangle in triangles.tolist():
-            self.add(*triangle)
+        self.next_edge = 0
+        triangles = np.asarray(triangles)
+        # ``add``'s orientation test, for all at once (the same arithmetic per triangle)
+        P = points
+        turn = _side(P[triangles[:, 0]], P[triangles[:, 1]], P[triangles[:, 2]])
+        ordered = np.where((turn < 0)[:, None], triangles[:, [0, 2, 1]], triangles)
+        for a, b, c in ordered.tolist():
+            self._insert(a, b, c)
 
     def add(self, a: int, b: int, c: int) -> None:
         if _orient(self.points[a], self.points[b], self.points[c]) < 0:
             b, c = c, b  # counter-clockwise
-        self.triangles[self.next_id] = (a, b, c)
-        for edge in ((a, b), (b, c), (c, a)):
-            self.edges.setdefault(tuple(sorted(edge)), []).append(self.next_id)
+        self._insert(a, b, c)
+
+    def _insert(self, a: int, b: int, c: int) -> None:
+        """Add the counter-clockwise triangle a, b, c."""
+        tid = self.next_id
+        self.triangles[tid] = (a, b, c)
+        for u, v in ((a, b), (b, c), (c, a)):
+            key = (u, v) if u < v else (v, u)
+            if key not in self.edges:
+                self.edges[key] = []
+                self.born[key] = self.next_edge
+                self.next_edge += 1
+            self.edges[key].append(tid)
+        for point in (a, b, c):
+            self.around.setdefault(point, set()).add(tid)
         self.next_id += 1
 
     def remove(self, tid: int) -> None:
@@ -137,6 +173,9 @@ class _Mesh:
             self.edges[key].remove(tid)
             if not self.edges[key]:
                 del self.edges[key]
+                del self.born[key]
+        for point in (a, b, c):
+            self.around[point].discard(tid)
 
     def quad(self, edge: tuple[int, int]) -> tuple[int, int, int, int] | None:
         """(u, v, p, q): the edge u-v with p on its left and q on its right; None on the hull."""
@@ -162,8 +201,39 @@ class _Mesh:
         return tuple(sorted((p, q)))
 
     def crossing(self, a: int, b: int) -> list[tuple[int, int]]:
-        """The edges that cross the segment a-b at an inner point of both."""
-        keys = np.array(list(self.edges), dtype=int)
+        """The edges that cross the segment a-b at an inner point of both, in
+        the order of ``edges``.
+
+        Only the edges of the triangles near the segment are tested: those
+        whose bounding box meets the segment's, reached from a's triangles
+        across shared edges. The triangles that meet the segment are such a
+        connected set, so every crossing edge is among them.
+        """
+        xy = self.xy
+        low = (min(xy[a][0], xy[b][0]), min(xy[a][1], xy[b][1]))
+        high = (max(xy[a][0], xy[b][0]), max(xy[a][1], xy[b][1]))
+        seen: set[int] = set()
+        stack = list(self.around[a])
+        near: set[tuple[int, int]] = set()
+        while stack:
+            tid = stack.pop()
+            if tid in seen:
+                continue
+            seen.add(tid)
+            corners = [xy[v] for v in self.triangles[tid]]
+            if (
+                min(p[0] for p in corners) > high[0]
+                or max(p[0] for p in corners) < low[0]
+                or min(p[1] for p in corners) > high[1]
+                or max(p[1] for p in corners) < low[1]
+            ):
+                continue
+            u, v, w = self.triangles[tid]
+            for edge in ((u, v), (v, w), (w, u)):
+                key = edge if edge[0] < edge[1] else (edge[1], edge[0])
+                near.add(key)
+                stack.extend(t for t in self.edges[key] if t not in seen)
+        keys = np.array(sorted(near, key=self.born.__getitem__), dtype=int).reshape(-1, 2)
         keys = keys[~np.isin(keys, [a, b]).any(axis=1)]
         P = self.points
         x, y = P[keys[:, 0]], P[keys[:, 1]]

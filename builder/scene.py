@@ -16,7 +16,7 @@ from . import bodies
 from .bodies import SURFACE, Body
 from .checks import Range
 from .errors import InputError, require_choice
-from .geometry import distance_to_polyline
+from .geometry import Polyline
 from .materials import spring_constant
 
 # LAMMPS atom types.
@@ -484,15 +484,16 @@ def place_disk(
     safe = wall_top + touch + target_gap  # no point in range up here
     centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
     lowest = np.argsort(disk_surface[:, 1])[:8]
+    wall = Polyline(wall_row)  # searched near each point only
     for _ in range(10000):
         points = disk_surface + centre
         # Only points that may be nearest: a point is at least its height over
         # the wall's top from the wall, and the lowest few bound the nearest
         # distance from above. The same distances, minimum and centre, for a
         # fraction of the points.
-        bound = distance_to_polyline(points[lowest], wall_row).min()
+        bound = wall.distance(points[lowest]).min()
         near = points[:, 1] - wall_top <= bound
-        excess = distance_to_polyline(points[near], wall_row).min() - target_gap
+        excess = wall.distance(points[near]).min() - target_gap
         if excess < 1e-9 * target_gap:
             return centre
         centre = centre + excess * direction

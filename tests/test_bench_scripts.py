@@ -31,6 +31,8 @@ COMBINATIONS = [
     ("drift_tail.py", ["--impacts", "docs/results/impacts.csv", "--worst", "10000"], "--worst"),
     ("drift_tail.py", ["--impacts", "README.md"], "--impacts"),
     ("large_disk.py", ["--ranks", "1", "1"], "--ranks"),
+    ("resolution_cost.py", ["--sizes", "800", "1600", "800"], "--sizes"),
+    ("resolution_cost.py", ["--ranks", "2", "2"], "--ranks"),
     ("roughness.py", ["--docs"], "--docs"),
     ("roughness.py", ["--first-seed", str(2**32 - 1), "--seeds", "2"], "--first-seed"),
     ("spring_cost.py", ["--docs", "--no-write"], "--no-write"),

@@ -14,7 +14,8 @@ from scipy.spatial import Delaunay, cKDTree
 from builder import bodies
 from builder.bodies import FIXED, SURFACE
 from builder.errors import InputError
-from builder.geometry import distance_to_polyline
+from builder.geometry import distance_to_polyline, distance_to_segments
+from builder.lammps_data import data_file_text
 from builder.network import _Mesh, constrain, outline_edges, unique_edges
 from builder.scene import DISK, SceneSpec, _sample_seeds, build_bodies, build_scene
 from runner.study import LATTICES
@@ -319,6 +320,29 @@ def test_seeds_that_built_keep_their_bytes(seed):
     assert h.hexdigest()[:16] == PINNED[seed]
 
 
+# sha256 (first 16 hex digits) of the data files of whole scenes, made by the
+# builder of a92ef95 with dense point-to-segment distances and a scan of every
+# edge per steep segment (numpy 2.4.6, scipy 1.17.1, matplotlib 3.11.2): the
+# KD-tree distances, the binned polygon test and the local edge search must
+# not move a bit. The 3,200-point disk has 8 steep surface segments.
+PINNED_SCENES = [
+    ({"seed": 1, "gamma_deg": 30.0}, "b02cd51c2de26582"),
+    ({"seed": 3, "lattice": "square", "gamma_deg": 60.0}, "2c28b31301a286f5"),
+    (
+        {"seed": 2, "lattice": "triangular", "roughness_direction": "both", "n_wall": "density"},
+        "d1babbb6fab27896",
+    ),
+    ({"seed": 1, "target": "disk", "gamma_deg": 45.0}, "12b18fdd393ad9b9"),
+    ({"seed": 1, "n_disk": 3200, "gamma_deg": 30.0}, "6df4c8167a004b05"),
+]
+
+
+@pytest.mark.parametrize("spec, digest", PINNED_SCENES, ids=lambda v: str(v))
+def test_scenes_keep_their_data_files(spec, digest):
+    text = data_file_text(build_scene(SceneSpec(**spec)))
+    assert hashlib.sha256(text.encode()).hexdigest()[:16] == digest
+
+
 # No displacement of a body that needed the fix may exceed 5 delta: a normal
 # deviate passes 5 sigma with probability 5.7e-7, so over the whole 100-seed
 # study (about 2 x 10^4 surface points of disks and dense walls) the chance
@@ -369,13 +393,15 @@ def test_steep_segments_give_the_constrained_delaunay_triangulation():
 
 
 def full_sphere_tracing(disk_surface, wall_row, velocity, target_gap, contact_x):
-    """place_disk with the minimum over every disk point at every step."""
+    """place_disk with the minimum over every disk point and every wall
+    segment at every step (the dense distances, not the KD-tree's)."""
     direction = velocity / np.linalg.norm(velocity)
     touch = -disk_surface[:, 1].min() + target_gap
     safe = wall_row[:, 1].max() + touch + target_gap
     centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
     while True:
-        excess = distance_to_polyline(disk_surface + centre, wall_row).min() - target_gap
+        distances = distance_to_segments(disk_surface + centre, wall_row[:-1], wall_row[1:])
+        excess = distances.min() - target_gap
         if excess < 1e-9 * target_gap:
             return centre
         centre = centre + excess * direction
