@@ -4,12 +4,11 @@
                                     [--repeats 3] [--gamma 30] [--seed 1] [--docs]
 
 For each number of disk points N (random disk, seed --seed, --gamma degrees,
-0.1 c) on a wall of 2 N points (the default's 1,600 : 800), with the time
-step and the contact following the spacing, which shrinks as sqrt(800 / N):
-dt = 8e-3 sqrt(800 / N) (the validated step at 800 points) and
-a R = 300 sqrt(N / 800) (32 decay lengths within the cutoff at every N).
-These are passed explicitly; they are what the scene's defaults are to
-become (issue 38), so the figures are those of a default impact then.
+0.1 c) at the scene's defaults, which follow the resolution: the wall of 2 N
+points, dt auto = 8e-3 sqrt(800 / N) R/c, the contact scaled with the spacing
+(a R = 300 sqrt(N / 800); docs/model.md, "The model as the resolution
+grows"), with the continuum reading's roughness, correlation length 0.048 R
+(the resolution study's; the paper's per-point roughness steepens with N).
 
 Each scene is built by ``python -m builder scene`` in a process of its own,
 twice: with an empty Poisson-disk cache (IMPACT_POISSON_CACHE, a fresh
@@ -26,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import resource
 import shutil
@@ -62,21 +60,19 @@ from runner.options import NPROCS, RunOptions
 SIZE = Range(N_DISK.low, min(N_DISK.high, N_WALL.high // 2), integer=True)
 SIZES = [200, 400, 800, 1600, 3200, 6400, 12800, 25600, 51200]
 # The study's resolution, where the step and the contact are the validated ones.
-BASE_POINTS, BASE_DT, BASE_A = 800, 8e-3, 300.0
-WALL_RATIO = 2  # wall points per disk point (the default's 1,600 : 800)
+ROUGHNESS_LENGTH = 0.048  # R: the resolution study's continuum reading
 FIT_TAIL = 4  # the local exponent: a fit over the largest this many sizes
 
 
 def scaled_settings(n_disk: int) -> tuple[float, float, int]:
-    """The time step, the contact's a R and the wall's points at n_disk:
-    the step and 1 / a in proportion to the spacing, sqrt(800 / n_disk)."""
-    scale = math.sqrt(BASE_POINTS / n_disk)
-    return BASE_DT * scale, BASE_A / scale, WALL_RATIO * n_disk
+    """The scene's own time step, contact a R and wall points at n_disk
+    (dt auto, contact_scaling spacing, n_wall twice n_disk)."""
+    spec = spec_at(n_disk, 30.0, 1)
+    return RunOptions().for_scene(spec).dt, spec.contact_decay * spec.radius, spec.wall_points
 
 
 def spec_at(n_disk: int, gamma: float, seed: int) -> SceneSpec:
-    _, contact_a, n_wall = scaled_settings(n_disk)
-    return SceneSpec(seed=seed, gamma_deg=gamma, n_disk=n_disk, n_wall=n_wall, contact_a=contact_a)
+    return SceneSpec(seed=seed, gamma_deg=gamma, n_disk=n_disk, roughness_length=ROUGHNESS_LENGTH)
 
 
 def build(spec: SceneSpec, folder: Path, cache: Path) -> tuple[float, float, float]:
@@ -89,10 +85,8 @@ def build(spec: SceneSpec, folder: Path, cache: Path) -> tuple[float, float, flo
         "scene",
         "--n-disk",
         str(spec.n_disk),
-        "--n-wall",
-        str(spec.n_wall),
-        "--contact-a",
-        repr(spec.contact_a),
+        "--roughness-length",
+        repr(spec.roughness_length),
         "--gamma",
         repr(spec.gamma_deg),
         "--seed",
@@ -281,8 +275,9 @@ def main(argv: list[str] | None = None) -> int:
     ]
     body = (
         f"Random disk, seed {args.seed}, {args.gamma:g} degrees, 0.1 c, roughness 0.03 R, "
-        "on a wall of 2 N points; dt = 8e-3 sqrt(800 / N) R/c and "
-        "a R = 300 sqrt(N / 800) (passed explicitly: what the defaults are to become). "
+        f"correlation length {ROUGHNESS_LENGTH:g} R, at the scene's defaults: a wall of 2 N "
+        "points, dt auto = 8e-3 sqrt(800 / N) R/c, a R = 300 sqrt(N / 800) (contact_scaling "
+        "spacing). "
         "Build: the whole `python -m builder scene` command in its own process, first with "
         "an empty Poisson-disk sample cache, then with the samples it drew; its CPU seconds "
         "(user + system; the machine is shared, so these and not its wall seconds, given "
