@@ -112,7 +112,8 @@ HEADER = [
 ]
 
 
-def main(argv: list[str] | None = None) -> int:
+def parser():
+    """The benchmark's options."""
     parser = bench_parser(__file__, __doc__)
     parser.add_argument(
         "--sizes",
@@ -121,7 +122,11 @@ def main(argv: list[str] | None = None) -> int:
         default=[400, 1600, 6400],
         help=f"disk points, each {N_DISK.describe()} (default: 400 1600 6400)",
     )
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
     try:
         sizes = distinct("--sizes", args.sizes)
     except InputError as error:
