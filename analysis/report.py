@@ -57,8 +57,10 @@ def wall_options(study: dict) -> str:
         return "--target disk" + (f" --partner-lattice {partner}" if partner else "")
     n_wall = study.get("n_wall", "density")
     wall_ka = study.get("wall_ka", "same-c")
+    # n_wall None: twice the disk's points, what leaving out --n-wall gives
+    points = "" if n_wall is None else f"--n-wall {n_wall} "
     return (
-        f"--n-wall {n_wall} --wall-ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}'} "
+        f"{points}--wall-ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}'} "
         f"--wall-fixed {study.get('wall_fixed', 'sides')}"
     )
 
@@ -86,6 +88,22 @@ def stop_rule(study: dict) -> str:
     return study["options"]["stop_rule"]
 
 
+def step(dt) -> str:
+    """A study's dt as --dt takes it: a number, or "auto"."""
+    return dt if isinstance(dt, str) else f"{dt:g}"
+
+
+def resolution_options(study: dict) -> str:
+    """How the study carries the model to its resolution, where it departs
+    from the defaults (studies from before these options have them)."""
+    words = ""
+    if study.get("roughness_length"):
+        words += f"--roughness-length {study['roughness_length']:g} "
+    if study.get("contact_scaling", "spacing") != "spacing":
+        words += f"--contact-scaling {study['contact_scaling']} "
+    return words
+
+
 def made_by(study: dict, preset: str) -> str:
     """The command that runs the study again, every option spelled out."""
     # a binary study has no wall (wall_options gives its target instead)
@@ -98,8 +116,8 @@ def made_by(study: dict, preset: str) -> str:
         f"{speed_options(study)} --roughness {study.get('roughness', 0.03):g} "
         f"--n-disk {study['n_disk']} --radius {study.get('radius', 1.0):g} "
         f"{width}--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
-        f"{model_options(study)} "
-        f"--dt {study['options']['dt']:g} "
+        f"{model_options(study)} {resolution_options(study)}"
+        f"--dt {step(study['options']['dt'])} "
         f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}"
     )
 

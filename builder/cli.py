@@ -44,6 +44,8 @@ def roughness_length(text: str) -> float:
     return ROUGHNESS_LENGTH(text)
 
 
+# what tests/test_bad_input.py feeds it: below, above and not numbers (0 is a value)
+roughness_length.bad_values = ("-0.1", "0.001", "2", "nan", "abc")
 
 
 def wall_points(text: str) -> int | str:

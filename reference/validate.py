@@ -208,6 +208,8 @@ def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6)
         ``smooth`` and ``rough``: one row per scene, as ``markdown`` prints them.
     """
     smooth_specs = scenes(n_disk, roughness=0.0)
+    # every scene has n_disk points: one step for all (dt "auto" follows the spacing)
+    options = options.for_scene(next(iter(smooth_specs.values())))
     smooth_refs = reference_runs(smooth_specs, out / "smooth")
     smooth = {
         name: compare(

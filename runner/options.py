@@ -82,7 +82,7 @@ class RunOptions:
 
     def validate(self) -> None:
         if self.dt != AUTO:
-            DT.check("dt (or 'auto')", self.dt)
+            DT.check("dt", self.dt)
         require_choice("integrator", self.integrator, INTEGRATORS)
         NRESPA.check("nrespa", self.nrespa)
         require_choice("contact", self.contact, CONTACTS)

@@ -57,7 +57,7 @@ def scenes(study: Study, seed: int, gamma: float) -> dict:
         (PRESETS["paper"], 7, 45.0),  # the default study; seed 7 of issue 23
         # other readings of the wall, small disks to save time
         (Study("t", n_disk=200, n_wall=800, wall_ka=10.0, wall_fixed="sides"), 3, 20.0),
-        (Study("t", n_disk=200, wall_ka="same-c"), 5, 70.0),
+        (Study("t", n_disk=200, n_wall=1600, wall_ka="same-c"), 5, 70.0),
     ],
 )
 def test_every_lattice_meets_the_same_wall_bytes(study, seed, gamma):

@@ -17,7 +17,7 @@ from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.impact import run_impact, run_scene
 from runner.lammps_run import LammpsError, lammps_error
-from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
+from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
 from tests.helpers import ROOT, SMALL, new_lammps
 
 
@@ -240,16 +240,15 @@ def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
     # the dense wall of the first study, held at its sides only: on stiffer
     # walls the disk leaves before it reaches the 4 R wall's end
     spec = SceneSpec(
+        **{**SMALL, "n_wall": "density"},
         gamma_deg=80.5,
         wall_width=4.0,
-        n_wall="density",
         wall_ka="same-c",
         wall_fixed="sides",
-        **SMALL,
     )
     folder = write_scene(build_scene(spec), tmp_path / "short_wall")
     with pytest.raises(LammpsError, match="slid off the end of the wall"):
-        run_scene(folder, RunOptions())
+        run_scene(folder, RunOptions(dt=DEFAULT_DT))  # the step this scene was written at
     assert not (folder / "result.json").exists()
     assert (
         float(re.search(r"at time ([\d.]+)", lammps_error(folder / "log.lammps", "")).group(1))
@@ -301,7 +300,7 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     assert proc.returncode == 0, proc.stderr
     warning = proc.stderr.strip().splitlines()
     assert len(warning) == 1 and "warning: energy drift" in warning[0]
-    assert f"dt = {RunOptions().dt:g}" in warning[0] and "--max-drift 1e-05" in warning[0]
+    assert f"dt = {DEFAULT_DT:g}" in warning[0] and "--max-drift 1e-05" in warning[0]
     result = json.loads((out / "result.json").read_text())
     assert result["drift_exceeded"] is True and abs(result["energy_drift"]) > result["max_drift"]
     # the default threshold: no warning, no flag
@@ -322,7 +321,7 @@ def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
     assert proc.returncode == 1
     error = proc.stderr.strip().splitlines()
     assert len(error) == 1 and "the run went unstable" in error[0]
-    assert f"dt = 0.05 R/c; the default, {RunOptions().dt:g}" in error[0]
+    assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
     assert not (out / "result.json").exists()
 
 

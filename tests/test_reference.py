@@ -22,12 +22,11 @@ def dense_model(tmp_path_factory):
     1.09e-5 and 1.08e-5 with Verlet), so no order can be read off there.
     """
     spec = SceneSpec(
+        **{**SMALL, "n_wall": "density"},
         gamma_deg=30.0,
-        n_wall="density",
         wall_ka="same-c",
         wall_fixed="sides",
         **FIRST_READING,
-        **SMALL,
     )
     folder = write_scene(build_scene(spec), tmp_path_factory.mktemp("reference_dense"))
     return load_model(folder, ReferenceOptions())
@@ -37,13 +36,13 @@ def dense_model(tmp_path_factory):
 # sides and bottom held, V0 from one point). On today's default the fourth-order
 # schemes converge faster than their order over these steps (slope 4.6 for
 # Forest-Ruth, measured 2026-11-24), so no order reads off there.
-BEFORE = dict(n_wall="density", wall_ka=1.0, wall_fixed="sides+bottom", **FIRST_READING)
+BEFORE = dict(wall_ka=1.0, wall_fixed="sides+bottom", **FIRST_READING)
 
 
 @pytest.fixture(scope="module")
 def model(tmp_path_factory):
     folder = write_scene(
-        build_scene(SceneSpec(gamma_deg=30.0, **BEFORE, **SMALL)),
+        build_scene(SceneSpec(gamma_deg=30.0, **BEFORE, **{**SMALL, "n_wall": "density"})),
         tmp_path_factory.mktemp("reference"),
     )
     return load_model(folder, ReferenceOptions())

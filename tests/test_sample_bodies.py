@@ -15,7 +15,7 @@ from runner.impact import run_scene
 from runner.lammps_run import data_to_restart
 from runner.options import RunOptions
 from runner.study import BODIES_FOLDER, SampleBodies
-from tests.helpers import SMALL
+from tests.helpers import SMALL, SMALL_DISK
 
 
 @pytest.mark.parametrize("radius", [1.0, 0.3, 7.0])
@@ -58,7 +58,8 @@ def test_bodies_and_placed_scene_run_bit_for_bit(tmp_path, lattice, gamma, targe
     binary restart, runs the same impact, bit for bit, as the impact's own
     placed data file: series.dat, energy.dat, e, beta; for two disks too (the
     deck sets the second disk's velocity)."""
-    scene = build_scene(SceneSpec(lattice=lattice, gamma_deg=gamma, target=target, **SMALL))
+    small = SMALL if target == "wall" else SMALL_DISK
+    scene = build_scene(SceneSpec(lattice=lattice, gamma_deg=gamma, target=target, **small))
     placed = write_scene(scene, tmp_path / "placed")
     bodies = write_bodies(scene, tmp_path / "bodies.data")
     restart = data_to_restart(bodies, tmp_path / "bodies.restart", "harmonic/quartic")

@@ -65,7 +65,7 @@ def test_stopping_early_changes_no_result(tmp_path, gamma, saves):
     1,600-point wall with ten times the disk's ka the disk leaves cleanly and
     both rules stop at the same check at every angle.)"""
     spec = SceneSpec(
-        gamma_deg=gamma, n_wall="density", wall_ka="same-c", wall_fixed="sides", **SMALL
+        **{**SMALL, "n_wall": "density"}, gamma_deg=gamma, wall_ka="same-c", wall_fixed="sides"
     )
     scene = build_scene(spec)
     results = {
