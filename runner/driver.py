@@ -9,7 +9,7 @@ from __future__ import annotations
 import shutil
 import time
 
-from .clusters import ClusterSpec, dask_client, replace_ended_jobs
+from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
 from .study import BODIES_FOLDER, Study, state
 from .tasks import WORKER_PHASES, group_task
 
@@ -107,22 +107,29 @@ def run_study(
         ran (how many were to run), and where the workers' and the driver's
         time went.
     """
+    created = not study.folder.exists()
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
-    print(
+    told = (
         f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or "
-        f"failed, {len(todo)} to run",
-        flush=True,
+        f"failed, {len(todo)} to run"
     )
     counts = {"ran": len(todo), "worker_seconds": dict.fromkeys(WORKER_PHASES, 0.0)}
     try:
+        if not todo or client is not None:
+            print(told, flush=True)
         if todo:
             if client is not None:
                 counts.update(drive(study, jobs, todo, client))
             else:
                 spec = cluster or ClusterSpec(workers=workers)
-                with dask_client(spec) as own:
+                with dask_client(spec) as own:  # said once the cluster is there
+                    print(told, flush=True)
                     counts.update(drive(study, jobs, todo, own, spec.size()))
+    except ClusterUnavailable:
+        if created:  # nothing ran: the study's name stays free
+            shutil.rmtree(study.folder, ignore_errors=True)
+        raise
     finally:
         # the workers' scratch (runner.study.SampleBodies), also what workers
         # that crashed left: no task of this study runs any more

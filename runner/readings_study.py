@@ -24,7 +24,7 @@ from analysis.table import write_csv
 from builder.checks import require_out_folder
 from builder.errors import InputError
 
-from .study import ROOT, machine, runs_folder
+from .study import ROOT, check_environment, check_source, machine, runs_folder
 from .study_file import StudyFile, axis_studies, combinations
 
 # runner study's options that a readings study takes (its file says the rest).
@@ -59,6 +59,14 @@ def refuse_options(args: argparse.Namespace) -> None:
         )
 
 
+def again(study, **changes):
+    """A combination's study run again: to more samples (the same study), or
+    on other lattices (a study of its own, <name>_<lattices>)."""
+    if "lattices" in changes:
+        changes["name"] = f"{study.name}_{'_'.join(changes['lattices'])}"
+    return replace(study, **changes)
+
+
 def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) -> int:
     """Run every combination, the re-run of the best, write the table and the page."""
     from .driver import run_study
@@ -71,15 +79,26 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     setup = setup_of(name, described)
     out = tables_folder(name, described, args.docs)
     studies = axis_studies(described.study, described.axes, name, described.sweep)
+    # each combination's grid as the file gives it, which its study.json keeps
+    studies = [replace(study, source=study.grid()) for study in studies]
     by_label = {module.label(c): (c, s) for c, s in zip(setup.choices, studies, strict=True)}
-    for _, study in by_label.values():  # every study of the run, before the first starts
-        study.validate()
+    rerun = described.rerun
+    for _, study in by_label.values():  # every study the run may make, before the first starts
+        others = [again(study, lattices=(x,)) for x in rerun.get("then_lattices", ())]
+        if rerun.get("best"):
+            others.append(again(study, samples=rerun["samples"]))
+        for each in (study, *others):
+            try:
+                each.validate()
+                check_source(each, described.path)
+                check_environment(each)
+            except InputError as error:
+                told = str(error).removeprefix(f"{described.path}: ")
+                raise InputError(f"{described.path}: combination {each.name}: {told}") from None
 
     def run(label: str, **changes) -> list[dict]:
         choice, study = by_label[label]
-        if "lattices" in changes:
-            changes["name"] = f"{study.name}_{'_'.join(changes['lattices'])}"
-        study = replace(study, **changes)
+        study = again(study, **changes)
         study.validate()
         run_study(study, retry_failed=args.retry_failed, cluster=cluster)
         rows = study_rows(study, label)
@@ -87,7 +106,6 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
         return [{**row, **extra} for row in rows]
 
     rows = [row for label in by_label for row in run(label)]
-    rerun = described.rerun
     record = {"command": f"python -m runner study {name}" + (" --docs" if args.docs else "")}
     if rerun.get("best"):
         best = module.rank(rows, setup)[: rerun["best"]]
