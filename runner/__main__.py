@@ -838,7 +838,7 @@ def remake_one_page(preset: str, out: Path | None) -> Path:
     committed tables; the tables of the readings it tabulates are brought to
     this version's format from themselves first. Returns the page."""
     from analysis.kinds import READINGS_KINDS
-    from analysis.report import report_from_tables
+    from analysis.report import report_from_tables, tidy_tables
     from builder.outputs import require_new_page
 
     from .readings_study import remake_page as remake_readings_page
@@ -862,6 +862,9 @@ def remake_one_page(preset: str, out: Path | None) -> Path:
                 f"{described.path}: readings names {name}, but {folder} holds no tables "
                 f"(python -m runner study {preset} --name {name} --docs makes them)"
             )
+    if out is None:
+        for folder in readings.values():
+            tidy_tables(folder)
     page = (out or docs) / f"{described.page}.md"
     report_from_tables(
         tables,
@@ -996,10 +999,15 @@ def run_one_study(args, study=None) -> int:
         if summary["drift_exceeded"]
         else ""
     )
+    stuck = f", in {summary['stuck']} the disk had not left the wall by tmax" * bool(
+        summary["stuck"]
+    )
     print(
         f"{summary['rows']} impacts{drift}, {summary['failed']} failed"
-        f"{f' ({causes})' if causes else ''}; results in {shown(summary['page'])}"
+        f"{f' ({causes})' if causes else ''}{stuck}; results in {shown(summary['page'])}"
     )
+    # the exit status says whether the study ran as asked: a disk that stayed
+    # on the wall is an outcome of the physics, a failed run is not
     return 1 if summary["failed"] else 0
 
 

@@ -46,14 +46,15 @@ class Progress:
 
     def __init__(self, total: int, already: int):
         self.total, self.already, self.start = total, already, time.monotonic()
-        self.done = self.failed = 0
+        self.done = self.failed = self.stuck = 0
 
     def line(self) -> str:
         elapsed = time.monotonic() - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
         left = (self.total - self.already - self.done) / rate if rate > 0 else float("nan")
+        stuck = f", {self.stuck} on the wall at tmax" if self.stuck else ""
         return (
-            f"  {self.already + self.done}/{self.total} impacts ({self.failed} failed), "
+            f"  {self.already + self.done}/{self.total} impacts ({self.failed} failed{stuck}), "
             f"{rate * 60:.0f} per minute, {left / 60:.1f} min left"
         )
 
@@ -191,8 +192,9 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
                 if outcome["state"] == "settled":
                     continue
                 progress.done += 1
-                if outcome["state"] == "failed":
-                    progress.failed += 1
+                if outcome["state"] in ("failed", "stuck"):
+                    progress.failed += outcome["state"] == "failed"
+                    progress.stuck += outcome["state"] == "stuck"
                     report_failure(outcome)
                 else:
                     spent.add(outcome)
@@ -210,8 +212,9 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
 
 
 def report_failure(outcome: dict) -> None:
+    said = "failed" if outcome["state"] == "failed" else "on the wall at tmax"
     print(
-        f"  failed: {outcome['lattice']} seed {outcome['seed']} gamma {outcome['gamma']}: "
+        f"  {said}: {outcome['lattice']} seed {outcome['seed']} gamma {outcome['gamma']}: "
         f"{outcome['error']}",
         flush=True,
     )

@@ -328,7 +328,12 @@ class Study:
 
     def summary(self, jobs: list[dict]) -> dict:
         counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
-        print(f"study {self.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
+        stuck = sum(failed_state(j) == "stuck" for j in jobs if state(j) == "failed")
+        said = f", {stuck} on the wall at tmax" if stuck else ""
+        print(
+            f"study {self.name}: {counts['done']} done, {counts['failed'] - stuck} failed{said}",
+            flush=True,
+        )
         return counts
 
 
@@ -662,6 +667,13 @@ def state(job: dict) -> str:
     if (folder / "failed.json").exists():
         return "failed"
     return "pending"
+
+
+def failed_state(job: dict) -> str:
+    """A failed impact's state: failed, or stuck (analysis.sections.impact_state)."""
+    from analysis.report import read_failure
+
+    return read_failure(job)["state"]
 
 
 def set_aside_if_unreadable(job: dict) -> None:
