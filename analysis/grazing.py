@@ -175,8 +175,9 @@ def draw(numbers: dict, folder) -> None:
 
 
 # What a reading's study.json may differ in from the study's and still be a
-# reading of it: everything but its name and the record of its run.
-NOT_A_READING = ("name", "wall_clock", "common_wall")
+# reading of it: everything but its name and the records of its run (how
+# long it took, what its study file said).
+NOT_A_READING = ("name", "wall_clock", "common_wall", "lammps_seconds", "source")
 
 
 def reading_differences(study: dict, reading: dict) -> str:
