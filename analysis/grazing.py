@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from .page import pm
+from .sections import genuine
 from .seeds import SeedTable, seed_bootstrap, seed_tables
 
 PAPER_LAST_ANGLE = 80.5  # degrees: the paper's last angle
@@ -174,8 +175,9 @@ def draw(numbers: dict, folder) -> None:
 
 
 # What a reading's study.json may differ in from the study's and still be a
-# reading of it: everything but its name and the record of its run.
-NOT_A_READING = ("name", "wall_clock", "common_wall")
+# reading of it: everything but its name and the records of its run (how
+# long it took, what its study file said).
+NOT_A_READING = ("name", "wall_clock", "common_wall", "lammps_seconds", "source")
 
 
 def reading_differences(study: dict, reading: dict) -> str:
@@ -223,8 +225,10 @@ def readings_section(study: dict, readings: dict[str, tuple[dict, list[dict], li
             mine = [r for r in rows if r["study_lattice"] == lattice]
             near = np.mean([float(r["side_clearance"]) < 1.0 for r in mine])
             label = name if len(info["lattices"]) == 1 else f"{name} ({lattice})"
+            lost = len(genuine(failed))
+            stuck = f" (+{len(failed) - lost} on the wall at tmax)" if len(failed) > lost else ""
             lines.append(
-                f"| {label} | {reading_differences(study, info)} | {len(mine)} | {len(failed)} | "
+                f"| {label} | {reading_differences(study, info)} | {len(mine)} | {lost}{stuck} | "
                 f"{where} | {degrees} | {height} | {pm(big['e'], big['error'])} | "
                 f"{big['gamma_deg']:g} | {big['z']:+.1f} | "
                 f"{'yes' if big['z'] > SIGNIFICANT else 'no'} | {near:.0%} |"

@@ -52,7 +52,6 @@ COLUMNS = tuple(
             "touches",
             "energy_drift",
             "steps",
-            "wall_seconds",
             "nu",
             "error",
         )

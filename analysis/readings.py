@@ -20,6 +20,7 @@ from builder.scene import FIRST_READING
 
 from .render import render
 from .sections import failure_cause
+from .table import TIMINGS, write_csv
 
 N_WALL = (800, 1600, "density")
 WALL_KA = (1.0, 10.0, "same-c")
@@ -137,10 +138,35 @@ ROWS = "rows.csv"
 RECORD = "run.json"
 
 
+# timings.csv beside rows.csv: each finished impact's LAMMPS seconds, by its
+# key; rows.csv keeps no time, so that a rerun that changes no number
+# changes no byte of it (analysis.table.TIMING_COLUMNS, for a results study).
+TIMING_KEY = ("reading", "study_lattice", "seed", "gamma_deg")
+
+
 def read_rows(folder: Path) -> list[dict]:
-    """A readings study's rows."""
+    """A readings study's rows, each finished one with its wall_seconds from
+    timings.csv (tables from before it have them in rows.csv)."""
     with (Path(folder) / ROWS).open() as handle:
-        return list(csv.DictReader(handle))
+        rows = list(csv.DictReader(handle))
+    timings = Path(folder) / TIMINGS
+    if timings.is_file():
+        with timings.open() as handle:
+            seconds = {
+                tuple(t[k] for k in TIMING_KEY): t["wall_seconds"] for t in csv.DictReader(handle)
+            }
+        for row in rows:
+            if (key := tuple(row[k] for k in TIMING_KEY)) in seconds:
+                row["wall_seconds"] = seconds[key]
+    return rows
+
+
+def write_tables(rows: list[dict], folder: Path, columns: tuple[str, ...]) -> None:
+    """rows.csv (``columns``) and timings.csv of a readings study's rows."""
+    write_csv(rows, Path(folder) / ROWS, columns)
+    timed = [r for r in rows if r.get("wall_seconds") not in (None, "")]
+    if timed:  # tables made before runs recorded their time have none
+        write_csv(timed, Path(folder) / TIMINGS, (*TIMING_KEY, "wall_seconds"))
 
 
 def read_record(folder: Path) -> dict:

@@ -22,13 +22,20 @@ from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
     failure_cause,
     failure_causes,
     failure_section,
+    genuine,
+    impact_state,
+    outcome_note,
+    state_of,
     tables_where,
     wall_end_section,
 )
 from .table import (
     MEAN_COLUMNS,
+    TIMING_COLUMNS,
+    TIMINGS,
     collect,
     mean_rows,
+    rounded,
     table_columns,
     with_model_readings,
     write_csv,
@@ -208,8 +215,7 @@ def results_page(
         f"from {angle_span(rows)} degrees; {samples}; "
         f"v_n = {study['vn']} {speed_unit_name(study)}; "
         f"velocity Verlet, dt = {study['options']['dt']} R/c, stop rule "
-        f"{stop_rule(study)}. {len(failed)} impact{'' if len(failed) == 1 else 's'} "
-        f"failed{drift_note}. LAMMPS time "
+        f"{stop_rule(study)}. {outcome_note(failed)}{drift_note}. LAMMPS time "
         f"{seconds / 3600:.2f} core-hours{wall_clock(study)}. "
         f"Tables{where_tables}: `impacts.csv` (one row per impact), "
         "`means.csv` (means per lattice and angle, with their seed-bootstrap errors "
@@ -251,17 +257,42 @@ def results_page(
 
 
 def read_failure(job: dict) -> dict:
-    """A failed impact's failed.json; a damaged one is a failure of its own cause."""
+    """A failed impact's failed.json, with its state (failed, or stuck: its
+    disk stayed on the wall); a damaged one is a failure of its own cause."""
     path = Path(job["folder"]) / "failed.json"
     try:
         failure = json.loads(path.read_text())
-        failure["error"]  # noqa: B018 -- must have one
+        failure["state"] = failure.get("state") or impact_state(failure["error"])
         return failure
     except (ValueError, TypeError, KeyError) as error:
-        return {**job, "error": f"unreadable failed.json ({type(error).__name__})"}
+        return {
+            **job,
+            "state": "failed",
+            "error": f"unreadable failed.json ({type(error).__name__})",
+        }
 
 
-FAILED_COLUMNS = ("lattice", "seed", "gamma", "vn", "error")
+# failed.csv: the impacts without a result; state: failed (the run did not go
+# as asked) or stuck (the disk had not left the wall by tmax: analysis.sections)
+FAILED_COLUMNS = ("lattice", "seed", "gamma", "vn", "state", "error")
+
+
+def record_timings(study, rows: list[dict]) -> dict:
+    """timings.csv in the study's folder (each finished impact's LAMMPS
+    seconds), and their sum in its study.json (lammps_seconds, which the page
+    states and which the tables' copy of study.json keeps); returns study.json."""
+    write_csv(rows, study.folder / TIMINGS, TIMING_COLUMNS)
+    path = study.folder / "study.json"
+    info = json.loads(path.read_text())
+    info["lammps_seconds"] = round(sum(float(r["wall_seconds"] or 0.0) for r in rows), 1)
+    path.write_text(json.dumps(info, indent=1))
+    return info
+
+
+def public_record(info: dict) -> str:
+    """study.json as a study's tables keep it: without the grid its study file
+    gave (runs' own record, runner.study.Study.source)."""
+    return json.dumps({k: v for k, v in info.items() if k != "source"}, indent=1)
 
 
 def report(
@@ -304,7 +335,7 @@ def report(
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     failed = [read_failure(j) for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
-    info = json.loads((study.folder / "study.json").read_text())
+    info = record_timings(study, rows)
     summary = render(
         info,
         rows,
@@ -322,7 +353,7 @@ def report(
         for name in ("impacts.csv", "means.csv", "fits.json", "speed.json", "failed.csv"):
             if (study.folder / name).exists():  # a speed study has speed.json instead of fits
                 (tables / name).write_bytes((study.folder / name).read_bytes())
-        (tables / "study.json").write_bytes((study.folder / "study.json").read_bytes())
+        (tables / "study.json").write_text(public_record(info))
     return summary
 
 
@@ -359,8 +390,7 @@ def report_from_tables(
     info, rows, failed = read_tables(tables)
     out = Path(out) if out is not None else Path(tables)
     out.mkdir(parents=True, exist_ok=True)
-    if out.resolve() != Path(tables).resolve():
-        (out / "study.json").write_bytes((tables / "study.json").read_bytes())
+    (out / "study.json").write_text(public_record(info))
     return render(
         info,
         rows,
@@ -395,14 +425,52 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
         info = json.loads((tables / "study.json").read_text())
         rows, failed = read("impacts.csv"), read("failed.csv")
         rows = [with_model_readings(row) for row in rows]
+        for failure in failed:  # failed.csv from before its state column
+            failure["state"] = state_of(failure)
+        if "lammps_seconds" not in info:  # tables whose rows had their seconds
+            info["lammps_seconds"] = round(sum(float(r.get("wall_seconds") or 0) for r in rows), 1)
         for line, row in enumerate(rows, start=2):
             finite = BINARY_FINITE if row.get("target") == "disk" else FINITE
+            # a table's row has no time (timings.csv, study.json's lammps_seconds)
+            finite = [k for k in finite if k != "wall_seconds"]
             bad = [k for k in finite if not math.isfinite(float(row.get(k) or "nan"))]
             if bad:
                 raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
     except (OSError, ValueError, KeyError) as error:
         raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
     return info, rows, failed
+
+
+def tidy_tables(tables: Path) -> None:
+    """A study's tables in this version's format, from themselves alone (no
+    run, nothing recomputed): impacts.csv without wall-clock seconds (their
+    sum into study.json's lammps_seconds), failed.csv with each impact's
+    state, the numbers of means.csv, fits.json and speed.json to
+    ``TABLE_DIGITS``. Tables already so are left byte for byte."""
+    info, rows, failed = read_tables(tables)
+    write_csv(rows, tables / "impacts.csv", table_columns(rows))
+    write_csv(failed, tables / "failed.csv", FAILED_COLUMNS)
+    (tables / "study.json").write_text(public_record(info))
+    if (tables / "fits.json").is_file():
+        fits = rounded(json.loads((tables / "fits.json").read_text()))
+        (tables / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
+    if (tables / "speed.json").is_file():
+        numbers = rounded(json.loads((tables / "speed.json").read_text()))
+        speed.write_json(numbers, tables / "speed.json")
+    if (tables / "means.csv").is_file():
+        with (tables / "means.csv").open() as handle:
+            means = [{k: number_text(v) for k, v in r.items()} for r in csv.DictReader(handle)]
+        write_csv(means, tables / "means.csv", MEAN_COLUMNS)
+
+
+def number_text(text: str) -> str:
+    """A table's cell with its number (a float's: with a point or an exponent)
+    to ``TABLE_DIGITS``; integers and words as they are."""
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    return str(rounded(value)) if any(c in text for c in ".eE") else text
 
 
 def shown_path(path: Path) -> str:
@@ -449,27 +517,29 @@ def render(
         return render_speed(info, rows, failed, out, page, resamples, preset, tables)
     fits, errors = study_estimates(rows, resamples)
     fits["claims"] = claims(fits)
-    means = mean_rows(rows, errors)
+    # what the tables keep, and the page says, to the digits every CPU agrees on
+    fits, errors = rounded(fits), rounded(errors)
+    means = rounded(mean_rows(rows, errors))
     figure_dir = figure_folder(page, out)
     shown_figures = figure_dir.relative_to(page.parent).as_posix()
     extra = {}
     if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
-        fits["grazing"] = grazing.grazing_numbers(rows, resamples)
+        fits["grazing"] = rounded(grazing.grazing_numbers(rows, resamples))
         grazing.draw(fits["grazing"], figure_dir)
         extra["grazing"] = grazing.grazing_section(fits["grazing"], shown_figures)
         others = {name: read_tables(folder) for name, folder in (readings or {}).items()}
         extra["readings"] = grazing.readings_section(info, others, resamples)
     if info.get("target") == "disk":  # two disks: beside the same disks on the wall
         walls = {name: read_tables(folder)[1] for name, folder in (readings or {}).items()}
-        fits["wall_comparison"] = {
-            name: binary_page.comparison(rows, wall, resamples) for name, wall in walls.items()
-        }
+        fits["wall_comparison"] = rounded(
+            {name: binary_page.comparison(rows, wall, resamples) for name, wall in walls.items()}
+        )
         for name, numbers in fits["wall_comparison"].items():
             binary_page.draw(numbers, figure_dir, name)
         extra["wall_comparison"] = binary_page.section(fits["wall_comparison"], shown_figures)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
-    seconds = sum(float(r["wall_seconds"]) for r in rows)
+    seconds = info["lammps_seconds"]
     # a sample is complete when every impact of it is done or failed
     per_sample = len(info["lattices"]) * info["angles"]
     finished = Counter(int(float(r["seed"])) for r in rows)
@@ -499,7 +569,8 @@ def summary(rows: list[dict], failed: list[dict], numbers: dict, page: Path) -> 
     """What ``report`` returns: counts, failure causes, the page's numbers."""
     return {
         "rows": len(rows),
-        "failed": len(failed),
+        "failed": len(genuine(failed)),
+        "stuck": len(failed) - len(genuine(failed)),
         "causes": failure_causes(failed),
         "drift_exceeded": sum(str(r["drift_exceeded"]) == "True" for r in rows),
         "fits": numbers,
@@ -518,7 +589,7 @@ def render_speed(
     tables: str,
 ) -> dict:
     """A study with a speed axis: speed.json, the figures and its page."""
-    numbers = speed.estimates(rows, resamples)
+    numbers = rounded(speed.estimates(rows, resamples))
     speed.write_json(numbers, out / "speed.json")
     figure_dir = figure_folder(page, out)
     speed_page.draw(numbers, figure_dir)

@@ -57,7 +57,6 @@ COLUMNS = (
     "side_clearance",
     "energy_drift",
     "steps",
-    "wall_seconds",
     "n_wall_points",
     "disk_inertia_ratio",
     "nu",

@@ -22,6 +22,42 @@ SECTIONS = (
     "wall_comparison",  # a binary study's (analysis.binary_page)
 )
 
+# What a run says when its disk never leaves the wall (decks/impact.lmp) or two
+# disks never part (decks/binary.lmp) by tmax: a physical outcome with no
+# rebound to measure, its own state in failed.csv (``state``), not a failure
+# of the run; a study whose impacts all ran as asked has succeeded.
+STUCK = ("has not left the wall by tmax", "have not parted by tmax")
+STATES = ("failed", "stuck")
+
+
+def impact_state(error: str) -> str:
+    """An impact without a result: ``stuck`` (it stayed in contact until tmax)
+    or ``failed`` (the run did not go as asked)."""
+    return "stuck" if any(words in error for words in STUCK) else "failed"
+
+
+def state_of(failure: dict) -> str:
+    """A failed.csv row's state; rows from before the column, from its error."""
+    return failure.get("state") or impact_state(failure["error"])
+
+
+def genuine(failed: list[dict]) -> list[dict]:
+    """The impacts whose run failed, not those that stayed on the wall."""
+    return [f for f in failed if state_of(f) == "failed"]
+
+
+def outcome_note(failed: list[dict]) -> str:
+    """'N impacts failed' and, if any, how many stayed on the wall, for a page's first lines."""
+    lost, stuck = len(genuine(failed)), len(failed) - len(genuine(failed))
+    note = f"{lost} impact{'' if lost == 1 else 's'} failed"
+    if stuck:
+        note += (
+            f"; in {stuck} the disk{' had' if stuck == 1 else 's had'} not left the wall by "
+            "tmax (below)"
+        )
+    return note
+
+
 NUMBER = re.compile(r"(?:(?<!\d)[-+])?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|\b(?:nan|inf)\b")
 
 
@@ -34,8 +70,9 @@ def failure_cause(message: str) -> str:
 
 
 def failure_causes(failed: list[dict]) -> dict[str, int]:
-    """How many failures each cause has, most first."""
-    return dict(Counter(failure_cause(f["error"]) for f in failed).most_common())
+    """How many failures each cause has, most first (not the impacts that
+    stayed on the wall: ``genuine``)."""
+    return dict(Counter(failure_cause(f["error"]) for f in genuine(failed)).most_common())
 
 
 def where(impacts: list[dict]) -> str:
@@ -56,9 +93,12 @@ def where(impacts: list[dict]) -> str:
 
 
 def failure_section(failed: list[dict]) -> list[str]:
-    """The failed impacts by cause: count, where, and one message in full."""
+    """The failed impacts by cause: count, where, and one message in full;
+    then those that stayed on the wall (``stuck_section``)."""
+    stuck = stuck_section(failed)
+    failed = genuine(failed)
     if not failed:
-        return []
+        return stuck
     lines = [
         "## Failed impacts",
         "",
@@ -74,7 +114,24 @@ def failure_section(failed: list[dict]) -> list[str]:
         lines.append(
             f"| {cause} | {count} | {where(these)} | {these[0]['error'][:160].replace('|', '/')} |"
         )
-    return lines + [""]
+    return lines + [""] + stuck
+
+
+def stuck_section(failed: list[dict]) -> list[str]:
+    """The impacts whose disk stayed on the wall (state stuck): where, and the message."""
+    stuck = [f for f in failed if state_of(f) == "stuck"]
+    if not stuck:
+        return []
+    return [
+        "## Disks that stayed on the wall",
+        "",
+        f"In {len(stuck)} impact{'' if len(stuck) == 1 else 's'} the disk had not left the "
+        "wall (or the two disks had not parted) when the run reached its tmax: a physical "
+        "outcome, not a failed run, with no rebound to measure, so no e or beta; they are "
+        "not in the means and fits (`failed.csv`, state `stuck`). Where: "
+        f"{where(stuck)}; the message: {stuck[0]['error'][:160]}.",
+        "",
+    ]
 
 
 def drift_section(rows: list[dict]) -> list[str]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -13,7 +14,10 @@ from builder.scene import MODEL_READINGS
 
 from .result import MAX_DRIFT, UnreadableResult, read_result
 
-# The columns of impacts.csv, in order; every result.json has them.
+# The columns of impacts.csv, in order; every result.json has them. Physics
+# and provenance only: how long an impact took (result.json's wall_seconds)
+# goes into timings.csv (TIMING_COLUMNS), so that a rerun that changes no
+# number changes no byte of the tables.
 COLUMNS = (
     "study_lattice",
     "lattice",
@@ -48,7 +52,6 @@ COLUMNS = (
     "nu",
     "steps",
     "time_end",
-    "wall_seconds",
     "dt",
     "integrator",
     "contact",
@@ -70,6 +73,31 @@ BINARY_COLUMNS = (
     "target_inertia_ratio",
     "n_disk_points",  # with the three before: each pair's two-body K (analysis.estimates)
 )
+
+
+# timings.csv: an impact's key and its LAMMPS seconds (runs/<name>/, and a
+# readings study's tables); a results study's tables keep their sum in
+# study.json (lammps_seconds), which its page states.
+TIMING_COLUMNS = ("study_lattice", "seed", "gamma_deg", "vn", "wall_seconds", "steps")
+TIMINGS = "timings.csv"
+# Significant digits of the numbers a page's tables keep that are computed
+# from the impacts (means, fits, bootstrap errors): beyond them the CPU's
+# arithmetic (numpy's order of summing, its vector width) moves the last
+# digits, and a page made again from the same tables on another x86-64 CPU
+# must be the same bytes. The errors of these numbers are 1e-3 and larger.
+TABLE_DIGITS = 10
+
+
+def rounded(value, digits: int = TABLE_DIGITS):
+    """``value`` with every float in it (in dicts, lists, tuples) to ``digits``
+    significant digits; other values as they are."""
+    if isinstance(value, float):
+        return float(f"{value:.{digits}g}") if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {k: rounded(v, digits) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(rounded(v, digits) for v in value)
+    return value
 
 
 def table_columns(rows: list[dict]) -> tuple[str, ...]:
@@ -151,7 +179,9 @@ def row(result: dict, study_lattice: str) -> dict:
     """The table's row for one result.json."""
     values = dict(result, study_lattice=study_lattice)
     columns = BINARY_COLUMNS if values.get("target") == "disk" else COLUMNS
-    return {name: "" if values.get(name) is None else values[name] for name in columns}
+    out = {name: "" if values.get(name) is None else values[name] for name in columns}
+    out["wall_seconds"] = values.get("wall_seconds", "")  # for timings.csv, not a column
+    return out
 
 
 def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:

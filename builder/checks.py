@@ -15,10 +15,11 @@ import argparse
 import math
 import tempfile
 from dataclasses import dataclass
-from numbers import Real
+from numbers import Integral, Real
 from pathlib import Path
 
 from .errors import InputError
+from .outputs import protected_problem
 
 # LAMMPS splits a command at whitespace, takes "#" for a comment, "$" for a
 # variable and quotes and "&" for its own syntax: a path with any of them
@@ -27,7 +28,8 @@ LAMMPS_UNSAFE = frozenset("#$&'\"`")
 
 
 def _number_text(value: float) -> str:
-    if float(value).is_integer() and abs(value) < 1e7:
+    # integers in full (a seed's bound is 4294967295, not 4.29497e+09)
+    if float(value).is_integer() and abs(value) < 1e16:
         return str(int(value))
     return f"{value:g}"
 
@@ -65,7 +67,9 @@ class Range:
     def contains(self, value) -> bool:
         if isinstance(value, bool) or not isinstance(value, Real):
             return False
-        if self.integer and not float(value).is_integer():
+        # an integer's value must be one, as the command line reads it: 2.0
+        # from a file would reach LAMMPS as "2.0", where it wants 2
+        if self.integer and not isinstance(value, Integral):
             return False
         if not math.isfinite(value):
             return False
@@ -129,9 +133,12 @@ def folder_problem(path: Path | str) -> str | None:
 
 
 def require_out_folder(name: str, path: Path | str) -> Path:
-    """``path`` as a Path if a run can write there and LAMMPS can name it, else
-    InputError naming the option."""
-    problem = word_problem(str(Path(path).absolute())) or folder_problem(path)
+    """``path`` as a Path if a run can write there (not inside the project's
+    record or code: builder.outputs) and LAMMPS can name it, else InputError
+    naming the option."""
+    problem = (
+        protected_problem(path) or word_problem(str(Path(path).absolute())) or folder_problem(path)
+    )
     if problem:
         raise InputError(f"{name}: {path} {problem}")
     return Path(path)
@@ -146,8 +153,10 @@ class OutFolder:
     def __call__(self, text: str) -> Path:
         if not text:
             raise argparse.ArgumentTypeError("must be a folder's path, got ''")
-        problem = (word_problem(str(Path(text).absolute())) if self.lammps else None) or (
-            folder_problem(text)
+        problem = (
+            protected_problem(text)
+            or (word_problem(str(Path(text).absolute())) if self.lammps else None)
+            or folder_problem(text)
         )
         if problem:
             raise argparse.ArgumentTypeError(f"{text} {problem}")

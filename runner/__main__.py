@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import json
 import re
 import sys
 import time
@@ -60,10 +61,12 @@ from .study import (
     ANGLES,
     COT_GAMMA,
     LATTICES,
+    ROOT,
     SAMPLES,
     EnvironmentFault,
     runs_folder,
 )
+from .values import GRID, RUN, SCENE
 from .wall_tilt import add_tilt_arguments, wall_tilt
 
 MAX_DRIFT_HELP = (
@@ -77,11 +80,13 @@ def study_name(text: str) -> str:
     from .study import name_problem
 
     if problem := name_problem(text):
-        raise argparse.ArgumentTypeError(f"{problem}, got {text!r}")
+        shown = text if len(text) <= 60 else f"{text[:60]}..."
+        raise argparse.ArgumentTypeError(f"{problem}, got {shown!r}")
     return text
 
 
-study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y")  # tests/test_bad_input.py
+# tests/test_bad_input.py
+study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y", "n" * 300)
 
 
 def time_step(text: str) -> float | str:
@@ -276,8 +281,16 @@ def parser() -> OneLineParser:
     page.add_argument(
         "preset",
         metavar="STUDY",
+        nargs="?",
         type=study_argument,
         help="a study file with a page (its tables in docs/<page>/)",
+    )
+    page.add_argument(
+        "--all",
+        action="store_true",
+        help="every study of studies/ whose tables are committed in docs/: each page, its "
+        "tables and figures made again from those tables alone (no run), and the tables "
+        "of the readings it tabulates in this version's format",
     )
     page.add_argument(
         "--out",
@@ -330,17 +343,17 @@ def add_study_arguments(study) -> None:
     )
     grid.add_argument(
         "--samples",
-        type=SAMPLES,
+        type=GRID["samples"],
         default=None,
         help=f"samples per lattice and angle, {SAMPLES.describe()}",
     )
     grid.add_argument(
-        "--angles", type=ANGLES, default=None, help=f"number of angles, {ANGLES.describe()}"
+        "--angles", type=GRID["angles"], default=None, help=f"number of angles, {ANGLES.describe()}"
     )
     grid.add_argument(
         "--cot-gamma",
         nargs="+",
-        type=COT_GAMMA,
+        type=GRID["cot_gamma"].numbers,
         default=None,
         metavar="C",
         help=f"these angles instead of --angles log-spaced ones: cot gamma values, each "
@@ -372,12 +385,12 @@ def add_study_arguments(study) -> None:
         "--dt", type=time_step, default=None, help=f"time step, {DT.describe()}, or auto"
     )
     scene.add_argument(
-        "--vn", type=VN, default=None, help=f"normal approach speed, {VN.describe()}"
+        "--vn", type=GRID["vn"], default=None, help=f"normal approach speed, {VN.describe()}"
     )
     scene.add_argument(
         "--speeds",
         nargs="+",
-        type=VN,
+        type=GRID["speeds"].numbers,
         default=None,
         metavar="V",
         help=f"these normal approach speeds as an axis of the study instead of --vn, each "
@@ -385,25 +398,25 @@ def add_study_arguments(study) -> None:
     )
     scene.add_argument(
         "--roughness",
-        type=ROUGHNESS,
+        type=SCENE["roughness"],
         default=None,
         help=f"std of the surface roughness, {ROUGHNESS.describe()}",
     )
     scene.add_argument(
         "--radius",
-        type=RADIUS,
+        type=SCENE["radius"],
         default=None,
         help=f"disk radius, {RADIUS.describe()} (default: 1; every length and time scales with it)",
     )
     scene.add_argument(
         "--n-disk",
-        type=N_DISK,
+        type=SCENE["n_disk"],
         default=None,
         help=f"points in each disk, {N_DISK.describe()} (default: 800)",
     )
     scene.add_argument(
         "--contact-a",
-        type=CONTACT_A,
+        type=SCENE["contact_a"],
         default=None,
         help=f"contact decay rate at 800 disk points, {CONTACT_A.describe()} (default: 300)",
     )
@@ -436,7 +449,7 @@ def add_study_arguments(study) -> None:
     add_model_arguments(scene, defaults=False)
     scene.add_argument(
         "--max-drift",
-        type=DRIFT,
+        type=RUN["max_drift"],
         default=None,
         help=MAX_DRIFT_HELP.format(RunOptions().max_drift),
     )
@@ -460,17 +473,28 @@ def add_study_arguments(study) -> None:
     )
 
 
-WALLTIME = re.compile(r"^(\d+-)?\d{1,3}:\d{2}:\d{2}$")
+WALLTIME = re.compile(r"^(?:(\d{1,3})-)?(\d{1,3}):([0-5]\d):([0-5]\d)$")
 SCHEDULER = re.compile(r"^([a-z]+://)?[\w.\-]+:\d{1,5}$")
 
 
 def walltime(text: str) -> str:
-    if not WALLTIME.match(text):
-        raise argparse.ArgumentTypeError(f"must be HH:MM:SS or D-HH:MM:SS, got {text!r}")
+    """--walltime: HH:MM:SS (minutes and seconds below 60), or D-HH:MM:SS
+    (hours below 24), longer than nothing."""
+    match = WALLTIME.match(text)
+    if (
+        not match
+        or (match[1] is not None and int(match[2]) > 23)
+        or not any(int(part or 0) for part in match.groups())
+    ):
+        raise argparse.ArgumentTypeError(
+            f"must be HH:MM:SS (MM and SS 00 to 59) or D-HH:MM:SS (HH 00 to 23), "
+            f"longer than 00:00:00, got {text!r}"
+        )
     return text
 
 
-walltime.bad_values = ("1h", "10", "a:b:c", "01:00")  # tests/test_bad_input.py
+walltime.bad_values = ("1h", "10", "a:b:c", "01:00", "00:99:99", "01:60:00", "1-24:00:00",
+                       "00:00:00", "-1:00:00")  # fmt: skip
 
 
 def job_memory(text: str) -> str:
@@ -498,14 +522,31 @@ slurm_word.bad_values = ("", "a b", "a;b")
 
 
 def scheduler_target(text: str) -> str:
-    if Path(text).is_file() or SCHEDULER.match(text):
+    """--scheduler: an address, or a scheduler file (JSON naming an address)."""
+    if Path(text).is_file():
+        try:
+            address = json.loads(Path(text).read_text(encoding="utf-8"))["address"]
+        except (OSError, ValueError, KeyError, TypeError):
+            address = None
+        if (
+            not isinstance(address, str)
+            or not SCHEDULER.match(address)
+            or (int(address.rsplit(":", 1)[1]) > 65535)
+        ):
+            raise argparse.ArgumentTypeError(
+                f'{text} is not a Dask scheduler file (JSON with the scheduler\'s "address", '
+                "as dask scheduler --scheduler-file writes it)"
+            )
+        return text
+    if SCHEDULER.match(text) and int(text.rsplit(":", 1)[1]) <= 65535:
         return text
     raise argparse.ArgumentTypeError(
         f"must be a Dask scheduler's address (tcp://host:8786) or its scheduler file, got {text!r}"
     )
 
 
-scheduler_target.bad_values = ("{tmp}/missing.json", "no address", "tcp://")
+scheduler_target.bad_values = ("{tmp}/missing.json", "no address", "tcp://", "{file}",
+                               "tcp://host:99999")  # fmt: skip
 
 
 def retired(replacement: str):
@@ -722,25 +763,29 @@ def refuse_idle_options(args: argparse.Namespace) -> None:
 
 def run_study_command(args) -> int:
     """One study, or a study with axes: each of its combinations in turn,
-    then their impacts.csv rows together in runs/<name>/impacts.csv."""
+    then their impacts.csv rows together in runs/<name>/impacts.csv. Every
+    combination is checked (its values, its folder, its record) before the
+    first runs."""
     from analysis.kinds import READINGS_KINDS
 
     from .readings_study import run_readings_study
-    from .study import AXES, PRESETS, STUDY_FILES
+    from .study import AXES, PRESETS, STUDY_FILES, study_from_args
     from .study_file import axis_studies
 
     described = STUDY_FILES[args.preset]
-    if described.kind in READINGS_KINDS:
-        cluster = cluster_from_args(args, runs_folder() / args.preset)
-        return run_readings_study(args, described, cluster)
-    if args.preset not in AXES:
-        return run_one_study(args)
-    if args.docs or args.from_tables:
+    axes = described.kind not in READINGS_KINDS and args.preset in AXES
+    if axes and (args.docs or args.from_tables):
         given = "--docs" if args.docs else "--from-tables"
         raise InputError(
             f"{given}: the {args.preset} study has axes ({', '.join(AXES[args.preset])}); "
             "each combination's tables and page go under runs/"
         )
+    docs_page(args, described)
+    if described.kind in READINGS_KINDS:
+        cluster = cluster_from_args(args, runs_folder() / args.preset)
+        return run_readings_study(args, described, cluster)
+    if not axes:
+        return run_one_study(args)
     flattened = [key for key in AXES[args.preset] if getattr(args, key, None) is not None]
     if flattened:
         key = flattened[0]
@@ -749,53 +794,133 @@ def run_study_command(args) -> int:
             f"({', '.join(map(str, AXES[args.preset][key]))}); change its values in the file"
         )
     name = args.name or args.preset
-    status = 0
-    subs = axis_studies(PRESETS[args.preset], AXES[args.preset], name, described.sweep)
-    for sub in subs:
+    combined = runs_folder() / name
+    if (combined / "study.json").exists():
+        raise InputError(f"--name {name}: {combined} holds a study; give another --name")
+    require_out_folder("--name", combined)
+    planned = []
+    for sub in axis_studies(PRESETS[args.preset], AXES[args.preset], name, described.sweep):
+        if sub.name in STUDY_FILES and sub.name != args.preset:
+            raise InputError(
+                f"{described.path}: the combination {sub.name} has the name of the study "
+                f"file studies/{sub.name}.toml; give another --name"
+            )
         PRESETS[sub.name] = sub
-        print(f"{args.preset}: {sub.name}", flush=True)
-        status = max(
-            status,
-            run_one_study(
-                argparse.Namespace(**{**vars(args), "preset": sub.name, "name": sub.name})
-            ),
-        )
-    table = combine_tables([runs_folder() / sub.name for sub in subs], runs_folder() / name)
-    print(f"{len(subs)} studies of {args.preset}; their impacts together in {shown(table)}")
+        sub_args = argparse.Namespace(**{**vars(args), "preset": sub.name, "name": sub.name})
+        refuse_idle_options(sub_args)
+        try:
+            planned.append((sub_args, study_from_args(sub_args, file=described.path)))
+        except InputError as error:  # which combination, and which file
+            told = str(error).removeprefix(f"{described.path}: ")
+            raise InputError(f"{described.path}: combination {sub.name}: {told}") from None
+    status = 0
+    for sub_args, study in planned:
+        print(f"{args.preset}: {study.name}", flush=True)
+        status = max(status, run_one_study(sub_args, study))
+    table = combine_tables([study.folder for _, study in planned], combined)
+    print(f"{len(planned)} studies of {args.preset}; their impacts together in {shown(table)}")
     return status
 
 
+def docs_page(args, described) -> str | None:
+    """The page in docs/ that the command writes: with --docs, the study's own
+    page, or (with its --name) one of the readings its page tabulates, and a
+    study file of one's own only a page no other study has (builder.outputs).
+
+    Raises
+    ------
+    builder.errors.InputError
+        For --docs where the study has no page, or with a --name that is not
+        one of its readings, or a page that is another study's.
+    """
+    from builder.outputs import require_new_page
+
+    from .study import built_in_pages
+
+    if not getattr(args, "docs", False) or described is None:
+        return None
+    if not described.page:
+        pages, _ = built_in_pages()
+        raise InputError(
+            f"--docs: the {args.preset} study has no page in docs/ (its file's page); "
+            f"studies with one: {', '.join(pages)}"
+        )
+    name = args.name or args.preset
+    page = described.page if name == args.preset else name
+    if page != described.page and page not in described.readings:
+        readings = f" or a reading its page tabulates ({', '.join(described.readings)})"
+        raise InputError(
+            f"--docs writes the {args.preset} study's page, docs/{described.page}.md"
+            f"{readings if described.readings else ''}; --name {name} is not one: leave out "
+            f"--docs (its page goes into runs/{name}/)"
+        )
+    if not described.built_in:
+        require_new_page(str(described.path), args.preset, page, *built_in_pages())
+    return page
+
+
 def remake_page(args) -> int:
-    """runner page: a study's page from its committed tables in docs/<page>/."""
+    """runner page: a study's page from its committed tables in docs/<page>/
+    (--all: every study's that has them)."""
+    from .study import STUDY_FILES, built_in_pages
+
+    if args.all == (args.preset is not None):
+        raise InputError("page: give a STUDY or --all, not both or neither")
+    if not args.all:
+        print(f"wrote {shown(remake_one_page(args.preset, args.out))}")
+        return 0
+    docs = ROOT / "docs"
+    for name, page in built_in_pages()[0].items():
+        tables = docs / page
+        if (tables / "study.json").is_file() or (tables / "rows.csv").is_file():
+            print(f"wrote {shown(remake_one_page(name, args.out))}", flush=True)
+        elif STUDY_FILES[name].page:
+            print(f"{name}: no tables in {shown(tables)}; its page is made by its run")
+    return 0
+
+
+def remake_one_page(preset: str, out: Path | None) -> Path:
+    """A study's page (and its tables, with ``out``: into ``out``) from its
+    committed tables; the tables of the readings it tabulates are brought to
+    this version's format from themselves first. Returns the page."""
     from analysis.kinds import READINGS_KINDS
-    from analysis.report import report_from_tables
+    from analysis.report import report_from_tables, tidy_tables
+    from builder.outputs import require_new_page
 
     from .readings_study import remake_page as remake_readings_page
-    from .study import DOC_PAGES, PAGE_SECTIONS, READINGS, ROOT, STUDY_FILES
+    from .study import PAGE_SECTIONS, READINGS, STUDY_FILES, built_in_pages
 
-    described = STUDY_FILES[args.preset]
+    described = STUDY_FILES[preset]
     if not described.page:
-        raise InputError(f"the {args.preset} study has no page in docs/ (its file's page)")
+        raise InputError(f"the {preset} study has no page in docs/ (its file's page)")
+    if not described.built_in and out is None:
+        require_new_page(str(described.path), preset, described.page, *built_in_pages())
     if described.kind in READINGS_KINDS:
-        page = remake_readings_page(args.preset, described, args.out)
-    else:
-        docs = ROOT / "docs"
-        tables = docs / DOC_PAGES[args.preset]
-        if not (tables / "study.json").is_file():
-            raise InputError(f"{args.preset}: {tables} holds no study's tables")
-        out = args.out / tables.name if args.out else tables
-        page = (args.out or docs) / f"{DOC_PAGES[args.preset]}.md"
-        readings = {n: docs / n for n in READINGS.get(args.preset, ())}
-        report_from_tables(
-            tables,
-            page,
-            preset=args.preset,
-            out=out,
-            readings={n: f for n, f in readings.items() if (f / "impacts.csv").is_file()},
-            sections=PAGE_SECTIONS.get(args.preset),
-        )
-    print(f"wrote {shown(page)}")
-    return 0
+        return remake_readings_page(preset, described, out)
+    docs = ROOT / "docs"
+    tables = docs / described.page
+    if not (tables / "study.json").is_file():
+        raise InputError(f"{preset}: {tables} holds no study's tables")
+    readings = {n: docs / n for n in READINGS.get(preset, ())}
+    for name, folder in readings.items():  # the page would lose its row
+        if not (folder / "impacts.csv").is_file():
+            raise InputError(
+                f"{described.path}: readings names {name}, but {folder} holds no tables "
+                f"(python -m runner study {preset} --name {name} --docs makes them)"
+            )
+    if out is None:
+        for folder in readings.values():
+            tidy_tables(folder)
+    page = (out or docs) / f"{described.page}.md"
+    report_from_tables(
+        tables,
+        page,
+        preset=preset,
+        out=out / tables.name if out else tables,
+        readings=readings,
+        sections=PAGE_SECTIONS.get(preset),
+    )
+    return page
 
 
 def combine_tables(folders: list[Path], out: Path) -> Path:
@@ -833,43 +958,41 @@ def remake_tabulating_page(preset: str, readings: dict[str, Path]) -> None:
     print(f"its row is on {shown(page)}")
 
 
-def run_one_study(args) -> int:
+def run_one_study(args, study=None) -> int:
+    """One study (``study``, if already made from ``args``): its impacts, then
+    its tables and page; or its page from tables alone (--from-tables)."""
     from analysis.report import report, report_from_tables
 
     from .driver import run_study
     from .study import (
-        DOC_PAGES,
         PAGE_SECTIONS,
         READINGS,
         ROOT,
+        STUDY_FILES,
         record_wall_clock,
         study_from_args,
     )
 
     docs = ROOT / "docs"
     refuse_idle_options(args)
-    # the preset's page, or for another --name (a reading of the preset) its own
-    doc_name = DOC_PAGES.get(args.preset) if args.name in (None, args.preset) else args.name
-    # a reading the preset's page tabulates: its tables go into docs/<name>/ and
-    # the preset's page is made again with them; its own page stays under runs/
+    # the study's page, or (with --name) a reading its page tabulates: the
+    # reading's tables go into docs/<name>/ and the study's page is made again
+    # with them; the reading's own page stays under runs/
+    doc_name = docs_page(args, STUDY_FILES.get(args.preset))  # None: an axis' combination
     tabulated = args.docs and doc_name in READINGS.get(args.preset, ())
     readings = {
         name: docs / name
         for name in READINGS.get(args.preset, ())
         if (docs / name / "impacts.csv").is_file()
     }
-    if args.docs and args.preset not in DOC_PAGES:
-        raise InputError(
-            f"--docs: the {args.preset} study has no page in docs/ (its file's page); "
-            f"studies with one: {', '.join(DOC_PAGES)}"
-        )
-    # another preset's page, or docs/' own folders, are not a study's to write
-    taken = {*DOC_PAGES.values(), "figures", "benchmarks"} - {DOC_PAGES.get(args.preset)}
-    if args.docs and doc_name in taken:
-        raise InputError(
-            f"--name {doc_name} with --docs would write docs/{doc_name}, which is not the "
-            f"{args.preset} preset's; give another --name"
-        )
+    if args.docs and not tabulated:
+        for name in sorted(set(READINGS.get(args.preset, ())) - set(readings)):
+            print(
+                f"warning: the page has no row for {name}: docs/{name}/ holds no tables "
+                f"(python -m runner study {args.preset} --name {name} --docs makes them)",
+                file=sys.stderr,
+                flush=True,
+            )
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
         out = docs / doc_name if args.docs else runs_folder() / name
@@ -877,7 +1000,8 @@ def run_one_study(args) -> int:
         if tabulated:
             page = require_out_folder("--name", runs_folder() / name) / "results.md"
             page.parent.mkdir(parents=True, exist_ok=True)
-        require_out_folder("--name", out)
+        if not args.docs:
+            require_out_folder("--name", out)
         if (out / "study.json").exists() and out.resolve() != args.from_tables.resolve():
             raise InputError(
                 f"--name {name}: {out} holds a study, which the tables would replace; "
@@ -899,7 +1023,7 @@ def run_one_study(args) -> int:
             remake_tabulating_page(args.preset, readings)
         return 0
     cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
-    study = study_from_args(args)
+    study = study or study_from_args(args, file=STUDY_FILES[args.preset].path)
     if not args.report_only:
         start = time.monotonic()
         counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
@@ -921,10 +1045,15 @@ def run_one_study(args) -> int:
         if summary["drift_exceeded"]
         else ""
     )
+    stuck = f", in {summary['stuck']} the disk had not left the wall by tmax" * bool(
+        summary["stuck"]
+    )
     print(
         f"{summary['rows']} impacts{drift}, {summary['failed']} failed"
-        f"{f' ({causes})' if causes else ''}; results in {shown(summary['page'])}"
+        f"{f' ({causes})' if causes else ''}{stuck}; results in {shown(summary['page'])}"
     )
+    # the exit status says whether the study ran as asked: a disk that stayed
+    # on the wall is an outcome of the physics, a failed run is not
     return 1 if summary["failed"] else 0
 
 

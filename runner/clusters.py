@@ -16,8 +16,10 @@ from __future__ import annotations
 import contextlib
 import logging
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -44,12 +46,22 @@ HOUSEKEEPING = {
 }
 # Environment a Slurm job's workers need from this process: the project's
 # folders (runs, the Poisson cache) and Open MPI's leave to run as root.
+# How long Slurm's sbatch may take to answer, checking the job (--test-only)
+# and submitting it: a study whose scheduler does not answer ends within a
+# minute, with nothing left behind (runner.driver.run_study).
+SBATCH_SECONDS = 25
+# How long joining a running cluster may take (--scheduler).
+JOIN_SECONDS = 30
 PASSED_ON = ("IMPACT_RUNS", "IMPACT_POISSON_CACHE", "OMPI_ALLOW_RUN_AS_ROOT",
              "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM")  # fmt: skip
 # How a Slurm job's workers start an impact's ranks (runner.lammps_run.mpi_launcher)
 # unless IMPACT_MPIRUN says otherwise: a step of the job's own cores. OpenMPI's
 # direct launch needs PMIx; a plain srun fails on Debian 12's Slurm 22.05.
 SLURM_MPIRUN = "srun --mpi=pmix"
+
+
+class ClusterUnavailable(InputError):
+    """The cluster asked for cannot be made or joined: nothing has run."""
 
 
 @dataclass(frozen=True)
@@ -135,6 +147,11 @@ def make_cluster(spec: ClusterSpec):
         )
     from dask_jobqueue import SLURMCluster
 
+    if shutil.which("sbatch") is None:
+        raise ClusterUnavailable(
+            "--cluster slurm: Slurm's sbatch is not on PATH (docs/cluster.md: run on a "
+            "machine of the cluster, or join a running Dask cluster with --scheduler)"
+        )
     options = {"walltime": spec.walltime, "queue": spec.queue, "account": spec.account}
     if spec.log_directory:
         spec.log_directory.mkdir(parents=True, exist_ok=True)
@@ -154,8 +171,67 @@ def make_cluster(spec: ClusterSpec):
         scheduler_options={"dashboard_address": ":8787"},
         **{key: value for key, value in options.items() if value is not None},
     )
-    cluster.scale(jobs=spec.jobs)
+    try:
+        test_job(cluster.job_script())
+        cluster.scale(jobs=spec.jobs)
+        # submit now, not in the background: a failing sbatch is then known at
+        # once, not repeated for ever while the study waits for workers
+        cluster.sync(cluster._correct_state, callback_timeout=SBATCH_SECONDS)
+    except BaseException as error:
+        with contextlib.suppress(Exception):
+            cluster.close()
+        if isinstance(error, ClusterUnavailable):
+            raise
+        if not isinstance(error, Exception):
+            raise  # a signal (runner.stopping)
+        raise ClusterUnavailable(
+            f"--cluster slurm: sbatch could not submit the jobs: {first_line(error)}"
+        ) from None
     return cluster
+
+
+def first_line(error: BaseException) -> str:
+    """An error's most telling line: Slurm's last error (or fatal), else its first line."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()]
+    told = [
+        line
+        for line in lines
+        if ("error" in line.lower() or "fatal" in line.lower()) and "exit code" not in line
+    ]
+    return told[-1] if told else (lines or [type(error).__name__])[0]
+
+
+def test_job(script: str) -> None:
+    """Ask Slurm whether it would take the job (sbatch --test-only, which
+    submits nothing), within SBATCH_SECONDS.
+
+    Raises
+    ------
+    ClusterUnavailable
+        With sbatch's error (an unknown partition or account, a walltime over
+        the limit, no controller), or if it did not answer in time.
+    """
+    with tempfile.NamedTemporaryFile("w", suffix=".sh") as handle:
+        handle.write(script)
+        handle.flush()
+        try:
+            proc = subprocess.run(
+                ["sbatch", "--test-only", handle.name],
+                capture_output=True,
+                text=True,
+                timeout=SBATCH_SECONDS,
+            )
+        except subprocess.TimeoutExpired:
+            raise ClusterUnavailable(
+                f"--cluster slurm: sbatch did not answer within {SBATCH_SECONDS} s "
+                "(is Slurm's controller up and reachable?)"
+            ) from None
+        except OSError as error:
+            raise ClusterUnavailable(f"--cluster slurm: sbatch cannot run ({error})") from None
+    if proc.returncode != 0:
+        raise ClusterUnavailable(
+            f"--cluster slurm: sbatch refuses the job: {first_line(RuntimeError(proc.stderr))}"
+        )
 
 
 # Slurm's states of a job that has not ended.
@@ -211,12 +287,13 @@ def dask_client(spec: ClusterSpec) -> Iterator:
             target = spec.scheduler
             try:
                 client = (
-                    Client(scheduler_file=target, timeout="30s")
+                    Client(scheduler_file=target, timeout=f"{JOIN_SECONDS}s")
                     if Path(target).is_file()
-                    else Client(target, timeout="30s")
+                    else Client(target, timeout=f"{JOIN_SECONDS}s")
                 )
-            except (OSError, TimeoutError, ValueError) as error:
-                raise InputError(f"--scheduler {target}: cannot join it ({error})") from None
+            except Exception as error:  # unreachable, or what answers is not Dask's
+                said = first_line(error) if str(error) else type(error).__name__
+                raise ClusterUnavailable(f"--scheduler {target}: cannot join it ({said})") from None
             with client:
                 yield client
             return

@@ -10,7 +10,7 @@ import shutil
 import time
 from dataclasses import replace
 
-from .clusters import ClusterSpec, dask_client, replace_ended_jobs
+from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
 from .study import BODIES_FOLDER, Study, state
 from .tasks import WORKER_PHASES, group_task
 
@@ -47,14 +47,15 @@ class Progress:
 
     def __init__(self, total: int, already: int):
         self.total, self.already, self.start = total, already, time.monotonic()
-        self.done = self.failed = 0
+        self.done = self.failed = self.stuck = 0
 
     def line(self) -> str:
         elapsed = time.monotonic() - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
         left = (self.total - self.already - self.done) / rate if rate > 0 else float("nan")
+        stuck = f", {self.stuck} on the wall at tmax" if self.stuck else ""
         return (
-            f"  {self.already + self.done}/{self.total} impacts ({self.failed} failed), "
+            f"  {self.already + self.done}/{self.total} impacts ({self.failed} failed{stuck}), "
             f"{rate * 60:.0f} per minute, {left / 60:.1f} min left"
         )
 
@@ -113,21 +114,28 @@ def run_study(
     spec = replace(cluster or ClusterSpec(workers=workers), ranks=study.options.nprocs)
     if client is None:
         spec.check_ranks()
+    created = not study.folder.exists()
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
-    print(
+    told = (
         f"study {study.name}: {len(jobs)} impacts, {len(jobs) - len(todo)} already done or "
-        f"failed, {len(todo)} to run",
-        flush=True,
+        f"failed, {len(todo)} to run"
     )
     counts = {"ran": len(todo), "worker_seconds": dict.fromkeys(WORKER_PHASES, 0.0)}
     try:
+        if not todo or client is not None:
+            print(told, flush=True)
         if todo:
             if client is not None:
                 counts.update(drive(study, jobs, todo, client))
             else:
-                with dask_client(spec) as own:
+                with dask_client(spec) as own:  # said once the cluster is there
+                    print(told, flush=True)
                     counts.update(drive(study, jobs, todo, own, spec.size()))
+    except ClusterUnavailable:
+        if created:  # nothing ran: the study's name stays free
+            shutil.rmtree(study.folder, ignore_errors=True)
+        raise
     finally:
         # the workers' scratch (runner.study.SampleBodies), also what workers
         # that crashed left: no task of this study runs any more
@@ -190,8 +198,9 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
                 if outcome["state"] == "settled":
                     continue
                 progress.done += 1
-                if outcome["state"] == "failed":
-                    progress.failed += 1
+                if outcome["state"] in ("failed", "stuck"):
+                    progress.failed += outcome["state"] == "failed"
+                    progress.stuck += outcome["state"] == "stuck"
                     report_failure(outcome)
                 else:
                     spent.add(outcome)
@@ -209,8 +218,9 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
 
 
 def report_failure(outcome: dict) -> None:
+    said = "failed" if outcome["state"] == "failed" else "on the wall at tmax"
     print(
-        f"  failed: {outcome['lattice']} seed {outcome['seed']} gamma {outcome['gamma']}: "
+        f"  {said}: {outcome['lattice']} seed {outcome['seed']} gamma {outcome['gamma']}: "
         f"{outcome['error']}",
         flush=True,
     )

@@ -14,6 +14,7 @@ CONTACTS = ("segment", "pair")
 RULES = ("lever", "gradient")
 SPRINGS = SPRING_STYLES
 ROUTES = ("lmp", "python")
+STOP_RULES = ("predict", "clearance")  # runner/stop_rule.py
 MAX_CHUNK_TIME = 2.0  # R/c between checks at most; the shortest contacts last about 9
 # Rows of series.dat and checks for the end are spaced in time, so that a
 # change of dt keeps what they resolve and what they cost per R/c.
@@ -118,7 +119,7 @@ class RunOptions:
                 f"dump_every must divide check ({check}) so that the last "
                 f"state is dumped, got {self.dump_every}"
             )
-        require_choice("stop_rule", self.stop_rule, ("predict", "clearance"))
+        require_choice("stop_rule", self.stop_rule, STOP_RULES)
         require_choice("route", self.route, ROUTES)
         if self.route == "python" and self.nprocs != 1:
             raise InputError("nprocs must be 1 with route python (run MPI jobs through lmp)")

@@ -19,12 +19,12 @@ from dataclasses import asdict, replace
 from pathlib import Path
 
 from analysis.kinds import kind_module, readings_page
-from analysis.readings import Setup, study_rows, write_record
-from analysis.table import write_csv
+from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
+from analysis.sections import impact_state
 from builder.checks import require_out_folder
 from builder.errors import InputError
 
-from .study import ROOT, machine, runs_folder
+from .study import ROOT, check_environment, check_source, machine, runs_folder
 from .study_file import StudyFile, axis_studies, combinations
 
 # runner study's options that a readings study takes (its file says the rest).
@@ -59,6 +59,14 @@ def refuse_options(args: argparse.Namespace) -> None:
         )
 
 
+def again(study, **changes):
+    """A combination's study run again: to more samples (the same study), or
+    on other lattices (a study of its own, <name>_<lattices>)."""
+    if "lattices" in changes:
+        changes["name"] = f"{study.name}_{'_'.join(changes['lattices'])}"
+    return replace(study, **changes)
+
+
 def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) -> int:
     """Run every combination, the re-run of the best, write the table and the page."""
     from .driver import run_study
@@ -71,18 +79,29 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     setup = setup_of(name, described)
     out = tables_folder(name, described, args.docs)
     studies = axis_studies(described.study, described.axes, name, described.sweep)
+    # each combination's grid as the file gives it, which its study.json keeps
+    studies = [replace(study, source=study.grid()) for study in studies]
     pairs = list(zip(setup.choices, studies, strict=True))
     if hasattr(module, "plan"):  # the kind thins its grid (fewer seeds where impacts cost more)
         pairs = [(c, planned) for c, s in pairs if (planned := module.plan(c, s)) is not None]
     by_label = {module.label(c): (c, s) for c, s in pairs}
-    for _, study in by_label.values():  # every study of the run, before the first starts
-        study.validate()
+    rerun = described.rerun
+    for _, study in by_label.values():  # every study the run may make, before the first starts
+        others = [again(study, lattices=(x,)) for x in rerun.get("then_lattices", ())]
+        if rerun.get("best"):
+            others.append(again(study, samples=rerun["samples"]))
+        for each in (study, *others):
+            try:
+                each.validate()
+                check_source(each, described.path)
+                check_environment(each)
+            except InputError as error:
+                told = str(error).removeprefix(f"{described.path}: ")
+                raise InputError(f"{described.path}: combination {each.name}: {told}") from None
 
     def run(label: str, **changes) -> list[dict]:
         choice, study = by_label[label]
-        if "lattices" in changes:
-            changes["name"] = f"{study.name}_{'_'.join(changes['lattices'])}"
-        study = replace(study, **changes)
+        study = again(study, **changes)
         study.validate()
         run_study(study, retry_failed=args.retry_failed, cluster=cluster)
         rows = study_rows(study, label)
@@ -90,7 +109,6 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
         return [{**row, **extra} for row in rows]
 
     rows = [row for label in by_label for row in run(label)]
-    rerun = described.rerun
     record = {"command": f"python -m runner study {name}" + (" --docs" if args.docs else "")}
     if rerun.get("best"):
         best = module.rank(rows, setup)[: rerun["best"]]
@@ -109,20 +127,24 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
             for lattice in rerun["then_lattices"]:
                 rows += run(label, lattices=(lattice,))
     out.mkdir(parents=True, exist_ok=True)
-    write_csv(rows, out / "rows.csv", module.COLUMNS)
+    write_tables(rows, out, module.COLUMNS)
     write_record({**record, "machine": machine()}, out)
     page = out.parent / f"{described.page or name}.md" if args.docs else out / f"{name}.md"
     readings_page(described.kind, out, page, setup)
-    failed = sum(bool(r.get("error")) for r in rows)
-    print(f"{len(rows)} impacts, {failed} failed; the table in {out / 'rows.csv'}, page {page}")
-    return 1 if failed else 0
+    failed = sum(bool(r.get("error")) and impact_state(r["error"]) == "failed" for r in rows)
+    stuck = sum(bool(r.get("error")) for r in rows) - failed
+    said = f", in {stuck} the disk had not left the wall by tmax" if stuck else ""
+    print(f"{len(rows)} impacts, {failed} failed{said}; the table in {out / ROWS}, page {page}")
+    return 1 if failed else 0  # a disk that stayed on the wall is physics, not a failed run
 
 
 def remake_page(name: str, described: StudyFile, out: Path | None = None) -> Path:
     """The page of a readings study again from its committed table in
     docs/<page>/, into docs/ (or ``out``)."""
     tables = ROOT / "docs" / described.page
-    if not (tables / "rows.csv").is_file():
+    if not (tables / ROWS).is_file():
         raise InputError(f"{name}: {tables} holds no table (rows.csv): run the study with --docs")
+    if out is None:  # tables from before timings.csv: their seconds move out of rows.csv
+        write_tables(read_rows(tables), tables, kind_module(described.kind).COLUMNS)
     page = (out or tables.parent) / f"{described.page}.md"
     return readings_page(described.kind, tables, page, setup_of(name, described))

@@ -19,12 +19,14 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result
-from builder.checks import Range, require_out_folder, word_problem
+from builder.checks import require_out_folder, word_problem
 from builder.errors import InputError
 from builder.lammps_data import write_bodies, write_scene
 from builder.materials import STUDY_LATTICES, calibrated
+from builder.outputs import NAME_MAX, runs_folder
 from builder.scene import (
     MODEL_READINGS,
+    SEED,
     VN,
     SceneSpec,
     build_scene,
@@ -35,6 +37,7 @@ from builder.scene import (
 from .lammps_run import ROOT as LAMMPS_ROOT
 from .lammps_run import STYLE_LIBRARIES, data_to_restart
 from .options import RunOptions, on_ranks
+from .values import ANGLES, COT_GAMMA, SAMPLES  # noqa: F401 (the command line's too)
 
 ROOT = Path(__file__).resolve().parents[1]
 LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
@@ -44,9 +47,6 @@ KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
 # The grid's numbers. A study larger than MAX_IMPACTS is refused with its
 # size and the time it would take at IMPACTS_PER_WORKER_MINUTE, the paper
 # study's rate per worker (1,010 per minute on 2 workers, docs/results.md).
-SAMPLES = Range(1, 10_000, integer=True)
-ANGLES = Range(2, 1_000, integer=True)
-COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
 MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 505.0
 # What may differ between a study's study.json and a command that resumes it
@@ -66,12 +66,6 @@ STARTED = "started.json"
 SET_ASIDE = (CORRUPT, "result.json" + OTHER_WALL, "failed.json" + OTHER_WALL)
 
 
-def runs_folder() -> Path:
-    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
-    cluster's scratch space; the tests' temporary folder)."""
-    return Path(os.environ.get("IMPACT_RUNS") or ROOT / "runs")
-
-
 def name_problem(name: str) -> str | None:
     """Why ``name`` cannot be a study's folder under runs/, or None.
 
@@ -83,6 +77,8 @@ def name_problem(name: str) -> str | None:
         return "must be a non-empty folder name"
     if os.sep in name or (os.altsep and os.altsep in name) or ".." in name:
         return "must be one folder under runs/, without '/' or '..'"
+    if len(name.encode()) > NAME_MAX:
+        return f"must be a folder name of at most {NAME_MAX} bytes ({len(name.encode())} given)"
     return word_problem(name)
 
 
@@ -137,6 +133,9 @@ class Study:
     target: str = SceneSpec.target
     partner_lattice: str | None = SceneSpec.partner_lattice
     options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
+    # the grid its study file gave when the study was first run (study.json
+    # keeps it): a file changed since is refused, not run on the old grid
+    source: dict | None = field(default=None, compare=False, repr=False)
 
     @property
     def folder(self) -> Path:
@@ -145,12 +144,14 @@ class Study:
     def validate(self) -> None:
         if problem := name_problem(self.name):
             raise InputError(f"name {problem}, got {self.name!r}")
-        require_out_folder("name", self.folder)
+        require_out_folder(f"--name {self.name}", self.folder)
         if not self.lattices:
             raise InputError(f"lattices must be among {', '.join(LATTICES)}; got none")
         for lattice in self.lattices:
-            if lattice not in LATTICES:
+            if not isinstance(lattice, str) or lattice not in LATTICES:
                 raise InputError(f"lattices must be among {', '.join(LATTICES)}; got {lattice!r}")
+        if len(set(self.lattices)) != len(self.lattices):
+            raise InputError(f"lattices names a lattice twice: {' '.join(self.lattices)}")
         ANGLES.check("angles", self.angles)
         for value in self.cot_gamma:
             COT_GAMMA.check("cot_gamma", value)
@@ -160,10 +161,28 @@ class Study:
                 f"got {self.angles}"
             )
         SAMPLES.check("samples", self.samples)
+        SEED.check("first_seed", self.first_seed)
+        last = self.first_seed + self.samples - 1
+        if last > SEED.high:  # every sample's seed, not the first alone
+            raise InputError(
+                f"first_seed + samples - 1 must be at most {SEED.high:.0f} (the last seed), got "
+                f"{self.first_seed} + {self.samples} - 1 = {last}"
+            )
+        VN.check("vn", self.vn)
         for value in self.speeds:
             VN.check("speeds", value)
-        if len(set(self.speeds)) != len(self.speeds):
-            raise InputError(f"speeds names a value twice: {' '.join(map(str, self.speeds))}")
+        # one folder per angle and speed: values that share one would run once
+        # and count twice (g<gamma to 1e-4 degrees>, v<speed>)
+        for what, words in (
+            ("cot_gamma", [f"g{g:.4f}" for g in self.gammas()]),
+            ("speeds", [f"v{v:g}" for v in self.speeds]),
+        ):
+            if len(set(words)) != len(words):
+                twice = sorted({w for w in words if words.count(w) > 1})
+                raise InputError(
+                    f"{what} names an impact's folder twice ({', '.join(twice)}): "
+                    "give distinct values"
+                )
         size = self.samples * self.angles * len(self.lattices) * len(self.velocities())
         if size > MAX_IMPACTS:
             hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
@@ -203,6 +222,7 @@ class Study:
         """What the study's tables depend on, as study.json records it."""
         values = asdict(self)
         values.pop("name")
+        values.pop("source")
         return values
 
     @classmethod
@@ -317,7 +337,12 @@ class Study:
 
     def summary(self, jobs: list[dict]) -> dict:
         counts = {s: sum(state(j) == s for j in jobs) for s in ("done", "failed", "pending")}
-        print(f"study {self.name}: {counts['done']} done, {counts['failed']} failed", flush=True)
+        stuck = sum(failed_state(j) == "stuck" for j in jobs if state(j) == "failed")
+        said = f", {stuck} on the wall at tmax" if stuck else ""
+        print(
+            f"study {self.name}: {counts['done']} done, {counts['failed'] - stuck} failed{said}",
+            flush=True,
+        )
         return counts
 
 
@@ -401,11 +426,13 @@ def check_environment(study: Study) -> None:
             ) from None
 
 
-def study_from_args(args) -> Study:
+def study_from_args(args, file: Path | None = None) -> Study:
     """The study a `runner study` command names: the preset's, or, if its
     folder holds a study, that study's study.json; the options given change
     it. A study that exists is never changed silently: an option that differs
-    from its record is refused, but for --extend's more samples or lattices."""
+    from its record is refused, but for --extend's more samples or lattices,
+    and so is a study file (``file``) that differs from what it said when the
+    study was first run."""
     from dataclasses import replace
 
     name = args.name or args.preset
@@ -413,6 +440,14 @@ def study_from_args(args) -> Study:
     existing = record.exists()
     base = Study.from_json(record) if existing else PRESETS[args.preset]
     base = replace(base, name=name)
+    said = replace(PRESETS[args.preset], name=name).grid()  # what the file says today
+    file_changes = (
+        file_changed(base.source, said, args.extend, name, file or args.preset) if existing else {}
+    )
+    if "samples" in file_changes:  # more than the file said before, never fewer than ran
+        file_changes["samples"] = max(file_changes["samples"], base.samples)
+    if "lattices" in file_changes:
+        file_changes["lattices"] = tuple(dict.fromkeys((*base.lattices, *said["lattices"])))
     changes = {
         key: getattr(args, key)
         for key in (
@@ -441,6 +476,7 @@ def study_from_args(args) -> Study:
             raise InputError(
                 f"--{dest.replace('_', '-')} names a value twice: {' '.join(map(str, values))}"
             )
+    changes = {**file_changes, **changes}
     if args.lattices:
         changes["lattices"] = tuple(args.lattices)
     if args.cot_gamma:
@@ -463,7 +499,7 @@ def study_from_args(args) -> Study:
         changes["options"] = replace(base.options, **options)
     if getattr(args, "ranks", None) is not None:
         changes["options"] = on_ranks(changes.get("options", base.options), args.ranks)
-    study = replace(base, **changes)
+    study = replace(base, **changes, source=said)
     if existing:
         before, after = base.grid(), study.grid()
         differ = [key for key in after if after[key] != before.get(key)]
@@ -487,7 +523,11 @@ def study_from_args(args) -> Study:
         raise InputError(f"--report-only: no study in {record.parent}; run it first")
     elif args.extend:
         raise InputError(f"--extend: no study in {record.parent} to extend")
-    study.validate()
+    try:
+        study.validate()
+    except InputError as error:  # a value of the file's, or of the file's with the options'
+        given = " with the options given" if set(changes) - set(file_changes) else ""
+        raise InputError(f"{file or args.preset}{given}: {error}") from None
     if not args.report_only:
         check_environment(study)
         for vn in study.velocities():
@@ -500,6 +540,48 @@ def study_from_args(args) -> Study:
                     flush=True,
                 )
     return study
+
+
+def file_changed(source: dict | None, said: dict, extend: bool, name: str, file) -> dict:
+    """What a study file changed since its study was first run (``source``,
+    recorded in study.json) that --extend lets it change: more samples or
+    lattices, as {field: value}.
+
+    Raises
+    ------
+    builder.errors.InputError
+        One line naming the file and what differs, for any other change (a
+        record from before files were recorded has no ``source``: no check).
+    """
+    if source is None:
+        return {}
+    said = json.loads(json.dumps(said))  # tuples as JSON's lists, as recorded
+    differ = [key for key in said if said[key] != source.get(key)]
+    grows = {
+        "samples": said["samples"] >= source.get("samples", 0),
+        "lattices": set(source.get("lattices", ())) <= set(said["lattices"]),
+    }
+    refused = [k for k in differ if not (extend and k in EXTENDABLE and grows[k])]
+    if refused:
+        told = "; ".join(f"{k} {source.get(k)!r} then, {said[k]!r} now" for k in refused)
+        hint = (
+            "; --extend takes more samples or lattices"
+            if set(refused) <= set(EXTENDABLE) and not extend
+            else ""
+        )
+        raise InputError(
+            f"{file}: differs from what runs/{name}/ was first run with: "
+            f"{told}{hint}; put the file back, or give another --name"
+        )
+    return {k: tuple(said[k]) if k == "lattices" else said[k] for k in differ}
+
+
+def check_source(study: Study, file) -> None:
+    """Refuse a study whose folder was first run from another version of its
+    file (``file_changed``); ``study.source`` is what the file says today."""
+    record = study.folder / "study.json"
+    if record.exists() and study.source is not None:
+        file_changed(Study.from_json(record).source, study.source, False, study.name, file)
 
 
 def record_wall_clock(study: Study, seconds: float, counts: dict) -> None:
@@ -572,6 +654,16 @@ def register(
             registry[name] = value
 
 
+def built_in_pages() -> tuple[dict, dict]:
+    """The pages in docs/ of the study files in studies/ and the readings
+    those pages tabulate, by study (not those of a file of one's own)."""
+    built_in = [name for name, described in STUDY_FILES.items() if described.built_in]
+    return (
+        {name: DOC_PAGES[name] for name in built_in if name in DOC_PAGES},
+        {name: READINGS[name] for name in built_in if name in READINGS},
+    )
+
+
 # The studies of studies/*.toml (paper, demo, speed, grazing, ...), the pages
 # under docs/ of those that have one (written only with --docs), the axes of
 # those that run once per combination of some options' values, and the
@@ -588,6 +680,13 @@ def state(job: dict) -> str:
     if (folder / "failed.json").exists():
         return "failed"
     return "pending"
+
+
+def failed_state(job: dict) -> str:
+    """A failed impact's state: failed, or stuck (analysis.sections.impact_state)."""
+    from analysis.report import read_failure
+
+    return read_failure(job)["state"]
 
 
 def set_aside_if_unreadable(job: dict) -> None:

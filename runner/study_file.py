@@ -55,14 +55,15 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
-from analysis.kinds import KINDS, READINGS_KINDS
+from analysis.kinds import KINDS, READINGS_KINDS, kind_module
 from analysis.readings import NAMED
 from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
-from builder.scene import ANGLE
+from builder.outputs import page_problem
 
 from .options import RANKS, RunOptions, on_ranks
+from .values import VALUES
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
@@ -111,6 +112,12 @@ class StudyFile:
     sweep: str = "cross"  # of SWEEPS
     rerun: dict = field(default_factory=dict)  # [rerun], for a readings kind
     named: dict = field(default_factory=dict)  # wall/model names given as one value
+    path: Path | None = field(default=None, compare=False)  # the file read
+
+    @property
+    def built_in(self) -> bool:
+        """Whether the file is studies/<name>.toml, whose page is the project's."""
+        return self.path is not None and self.path.resolve().parent == STUDIES.resolve()
 
 
 def cot_of_degrees(degrees: float) -> float:
@@ -134,27 +141,39 @@ def read_study_file(path: Path) -> StudyFile:
     from .study import Study
 
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError as error:
+        raise InputError(f"{path}: not a study file (not UTF-8 text: {error.reason} at byte "
+                         f"{error.start})") from None  # fmt: skip
     except (OSError, tomllib.TOMLDecodeError) as error:
         raise InputError(f"{path}: not a study file ({error})") from None
     page = data.pop("page", "")
-    if not isinstance(page, str):
-        raise InputError(f"{path}: page must be a name in docs/, got {page!r}")
+    if page != "" and (problem := page_problem(page)):
+        raise InputError(f"{path}: page {problem}, got {page!r}")
     readings = data.pop("readings", [])
-    if not isinstance(readings, list) or not all(isinstance(r, str) for r in readings):
-        raise InputError(f"{path}: readings must be a list of names in docs/, got {readings!r}")
+    if not isinstance(readings, list) or any(page_problem(r, tables=True) for r in readings):
+        raise InputError(
+            f"{path}: readings must be a list of plain names (docs/<name>/), got {readings!r}"
+        )
+    if len(set(readings)) != len(readings) or page in readings:
+        raise InputError(f"{path}: readings names a table twice, got {readings!r}")
     if readings and not page:
         raise InputError(f"{path}: readings are tabulated on the study's page: give page")
     sections = data.pop("sections", [])
-    if not isinstance(sections, list) or not all(name in PAGE_SECTIONS for name in sections):
+    if (
+        not isinstance(sections, list)
+        or not all(isinstance(name, str) and name in PAGE_SECTIONS for name in sections)
+        or len(set(sections)) != len(sections)
+    ):
         raise InputError(
-            f"{path}: sections must be a list among {', '.join(PAGE_SECTIONS)}, got {sections!r}"
+            f"{path}: sections must be a list of distinct names among {', '.join(PAGE_SECTIONS)}, "
+            f"got {sections!r}"
         )
     kind = data.pop("kind", "results")
-    if kind not in KINDS:
+    if not isinstance(kind, str) or kind not in KINDS:
         raise InputError(f"{path}: kind must be one of {', '.join(KINDS)}, got {kind!r}")
     sweep = data.pop("sweep", "cross")
-    if sweep not in SWEEPS:
+    if not isinstance(sweep, str) or sweep not in SWEEPS:
         raise InputError(f"{path}: sweep must be one of {', '.join(SWEEPS)}, got {sweep!r}")
     unknown = set(data) - set(SECTIONS)
     if unknown:
@@ -165,7 +184,7 @@ def read_study_file(path: Path) -> StudyFile:
     if kind != "results" and (sections or readings):
         raise InputError(f"{path}: sections and readings are a results page's, not a {kind} page's")
     rerun = read_rerun(path, data.pop("rerun", {}), kind)
-    study_fields = {f.name for f in fields(Study)} - {"name", "options"}
+    study_fields = {f.name for f in fields(Study)} - {"name", "options", "source"}
     allowed = {
         "grid": set(GRID),
         "scene": (study_fields - set(GRID)) | set(NAMED),
@@ -183,22 +202,29 @@ def read_study_file(path: Path) -> StudyFile:
                     f"{path}: [{section}] has no option {key!r}; options: "
                     f"{', '.join(sorted(allowed[section]))}"
                 )
+            where = f"{path}: [{section}] {key}"
             if (section, key) == ("run", "ranks"):  # one value: not an axis
-                RANKS.check(f"{path}: [run] ranks (MPI ranks per impact)", value)
-            if key in LISTS and not isinstance(value, list):
-                raise InputError(f"{path}: [{section}] {key} must be a list, got {value!r}")
-            for name in value if isinstance(value, list) and key in NAMED else [value]:
-                if key in NAMED and name not in NAMED[key]:
-                    raise InputError(
-                        f"{path}: [scene] {key} must be among {', '.join(NAMED[key])}, got {name!r}"
-                    )
-            if isinstance(value, list) and key not in LISTS:
+                RANKS.check(f"{where} (MPI ranks per impact)", value)
+            elif key in NAMED:
+                for name in value if isinstance(value, list) else [value]:
+                    if not isinstance(name, str) or name not in NAMED[key]:
+                        raise InputError(
+                            f"{where} must be among {', '.join(NAMED[key])}, got {name!r}"
+                        )
+            elif key in LISTS:
+                VALUES[section][key].check(where, value)
+            elif isinstance(value, list):
                 if section == "grid" and key not in GRID_AXES:
-                    raise InputError(f"{path}: [grid] {key} must be one value, got {value!r}")
+                    raise InputError(f"{where} must be one value, got {value!r}")
+                for each in value:  # every value of an axis, in any position
+                    VALUES[section][key].check(where, each)
+            else:
+                VALUES[section][key].check(where, value)
+            if isinstance(value, list) and key not in LISTS:
                 words = [axis_word(v) for v in value]
                 if not value or len(set(words)) != len(value):
                     raise InputError(
-                        f"{path}: [{section}] {key}: an axis needs values distinct in their "
+                        f"{where}: an axis needs values distinct in their "
                         f"folder names ({', '.join(words) or 'none'}), got {value!r}"
                     )
                 axes[(section, key)] = tuple(value)
@@ -218,10 +244,6 @@ def read_study_file(path: Path) -> StudyFile:
     if "gamma_deg" in grid:
         if "cot_gamma" in grid:
             raise InputError(f"{path}: [grid] gives both gamma_deg and cot_gamma; give one")
-        for degrees in grid["gamma_deg"]:
-            if isinstance(degrees, bool) or not isinstance(degrees, (int, float)):
-                raise InputError(f"{path}: [grid] gamma_deg must be numbers, got {degrees!r}")
-            ANGLE.check(f"{path}: [grid] gamma_deg", degrees)
         grid["cot_gamma"] = [cot_of_degrees(g) for g in grid.pop("gamma_deg")]
     for key in LISTS:
         if key in grid:
@@ -247,7 +269,21 @@ def read_study_file(path: Path) -> StudyFile:
             f"{path}: [rerun] samples must be more than [grid] samples ({study.samples}), "
             f"got {rerun['samples']}"
         )
-    return StudyFile(study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named)
+    if kind in READINGS_KINDS:  # its page names each combination by some of its options
+        labels = []
+        for choice in combinations(axes, sweep):
+            try:
+                labels.append(kind_module(kind).label(choice))
+            except KeyError as missing:
+                raise InputError(
+                    f"{path}: kind {kind} compares readings by {missing.args[0]}: give it a "
+                    f"list of values (an axis)"
+                ) from None
+        if len(set(labels)) != len(labels):
+            raise InputError(f"{path}: kind {kind}: two combinations read alike ({labels})")
+    return StudyFile(
+        study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named, path
+    )
 
 
 def read_rerun(path: Path, table, kind: str) -> dict:
@@ -269,11 +305,13 @@ def read_rerun(path: Path, table, kind: str) -> dict:
             )
     out = {**RERUN, **table}
     for lattice in out["then_lattices"]:  # refused now, not after the first pass's hours
-        if lattice not in STUDY_LATTICES:
+        if not isinstance(lattice, str) or lattice not in STUDY_LATTICES:
             raise InputError(
                 f"{path}: [rerun] then_lattices must be among {', '.join(STUDY_LATTICES)}, "
                 f"got {lattice!r}"
             )
+    if len(set(map(str, out["then_lattices"]))) != len(out["then_lattices"]):
+        raise InputError(f"{path}: [rerun] then_lattices names a lattice twice")
     if out["best"] and out["samples"] == 0:
         raise InputError(f"{path}: [rerun] best needs samples, more than [grid] samples")
     if bool(out["then_lattices"]) != bool(out["then_best"]):
@@ -353,7 +391,7 @@ def study_file_text(described: StudyFile) -> str:
     for key, value in named.items():
         sections["scene"].append(f"{key} = {toml_value(value)}")
     for option in fields(Study):
-        if option.name in ("name", "options") or option.name in covered:
+        if option.name in ("name", "options", "source") or option.name in covered:
             continue
         value = axes.get(option.name, getattr(study, option.name))
         if option.name in axes or value != getattr(default, option.name):

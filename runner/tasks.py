@@ -26,6 +26,7 @@ import time
 from pathlib import Path
 
 from analysis.result import write_json_atomically
+from analysis.sections import impact_state
 
 from .impact import run_scene
 from .lammps_run import lammps_error
@@ -42,12 +43,15 @@ WORKER_PHASES = ("build", "lammps", "rest")
 
 
 def fail(job: dict, message: str) -> dict:
-    """Record the impact as failed (failed.json) and say so."""
+    """Record the impact as without a result (failed.json), with its state:
+    failed, or stuck (its disk stayed on the wall, a physical outcome:
+    analysis.sections.impact_state), and say so."""
     folder = Path(job["folder"])
     folder.mkdir(parents=True, exist_ok=True)
-    write_json_atomically({**job, "error": message}, folder / "failed.json")
+    state = impact_state(message)
+    write_json_atomically({**job, "state": state, "error": message}, folder / "failed.json")
     (folder / STARTED).unlink(missing_ok=True)
-    return {**job, "state": "failed", "error": message}
+    return {**job, "state": state, "error": message}
 
 
 def earlier_attempt(job: dict) -> tuple[int, str]:

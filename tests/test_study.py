@@ -466,6 +466,63 @@ def test_extend_adds_samples_and_never_removes(uninterrupted):
     )
 
 
+def test_timings_stay_out_of_the_tables(uninterrupted):
+    """impacts.csv has no wall-clock seconds: timings.csv has each impact's,
+    study.json their sum; a report after impacts that took other times but
+    gave the same numbers changes no byte of the tables."""
+    folder = copy_of_whole("test_study_timings")
+    tables = ("impacts.csv", "means.csv", "fits.json", "failed.csv")
+    proc = report_only("test_study_timings")
+    assert proc.returncode == 0, proc.stderr
+    before = {name: (folder / name).read_bytes() for name in tables}
+    with (folder / "timings.csv").open() as handle:
+        timings = list(csv.DictReader(handle))
+    assert "wall_seconds" not in before["impacts.csv"].decode().splitlines()[0].split(",")
+    assert len(timings) == len(uninterrupted) and all(float(t["wall_seconds"]) > 0 for t in timings)
+    lammps = json.loads((folder / "study.json").read_text())["lammps_seconds"]
+    assert lammps == round(sum(float(t["wall_seconds"]) for t in timings), 1)
+    for path in folder.rglob("result.json"):  # the same impacts, twice as slow
+        result = json.loads(path.read_text())
+        path.write_text(json.dumps({**result, "wall_seconds": 2 * result["wall_seconds"] + 1}))
+    proc = report_only("test_study_timings")
+    assert proc.returncode == 0, proc.stderr
+    assert {name: (folder / name).read_bytes() for name in tables} == before
+    assert json.loads((folder / "study.json").read_text())["lammps_seconds"] > lammps
+
+
+@pytest.mark.parametrize(
+    "error, status, said",
+    [
+        ("ERROR: the disk has not left the wall by tmax = 100.0", 0,
+         "0 failed, in 1 the disk had not left the wall by tmax; results in"),
+        ("ERROR: the disk slid off the end of the wall before it rebounded, at time 5.6", 1,
+         "1 failed (1: the disk slid off the end of the wall before it rebounded)"),
+    ],
+)  # fmt: skip
+def test_a_disk_that_stays_on_the_wall_is_an_outcome_not_a_failure(
+    uninterrupted, error, status, said
+):
+    """An impact whose disk has not left the wall by tmax is recorded as its
+    own state (failed.csv's state, its own section of the page) and the study
+    has run as asked (exit 0); a failed run is a failure (exit 1)."""
+    folder = copy_of_whole("test_study_stuck")
+    result = sorted(folder.rglob("result.json"))[-1]
+    job = json.loads(result.read_text())
+    result.unlink()
+    failure = {"lattice": "random", "seed": job["seed"], "gamma": job["gamma_deg"], "vn": 0.1}
+    (result.parent / "failed.json").write_text(json.dumps({**failure, "error": error}))
+    proc = report_only("test_study_stuck")
+    assert proc.returncode == status, proc.stdout + proc.stderr
+    last = proc.stdout.strip().splitlines()[-1]
+    assert last.startswith(f"{len(uninterrupted) - 1} impacts") and said in last, last
+    with (folder / "failed.csv").open() as handle:
+        (row,) = list(csv.DictReader(handle))
+    assert row["state"] == ("stuck" if status == 0 else "failed") and row["error"] == error
+    page = (folder / "results.md").read_text()
+    assert ("## Disks that stayed on the wall" in page) == (status == 0)
+    assert ("## Failed impacts" in page) == (status == 1)
+
+
 def test_a_result_with_nan_is_not_a_result(uninterrupted):
     folder = copy_of_whole("test_study_nan")
     result = sorted(folder.glob("random/*/*/result.json"))[2]
