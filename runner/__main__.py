@@ -728,18 +728,19 @@ def run_study_command(args) -> int:
     from .study_file import axis_studies
 
     described = STUDY_FILES[args.preset]
-    docs_page(args, described)
-    if described.kind in READINGS_KINDS:
-        cluster = cluster_from_args(args, runs_folder() / args.preset)
-        return run_readings_study(args, described, cluster)
-    if args.preset not in AXES:
-        return run_one_study(args)
-    if args.docs or args.from_tables:
+    axes = described.kind not in READINGS_KINDS and args.preset in AXES
+    if axes and (args.docs or args.from_tables):
         given = "--docs" if args.docs else "--from-tables"
         raise InputError(
             f"{given}: the {args.preset} study has axes ({', '.join(AXES[args.preset])}); "
             "each combination's tables and page go under runs/"
         )
+    docs_page(args, described)
+    if described.kind in READINGS_KINDS:
+        cluster = cluster_from_args(args, runs_folder() / args.preset)
+        return run_readings_study(args, described, cluster)
+    if not axes:
+        return run_one_study(args)
     flattened = [key for key in AXES[args.preset] if getattr(args, key, None) is not None]
     if flattened:
         key = flattened[0]
@@ -791,7 +792,7 @@ def docs_page(args, described) -> str | None:
 
     from .study import built_in_pages
 
-    if not getattr(args, "docs", False):
+    if not getattr(args, "docs", False) or described is None:
         return None
     if not described.page:
         pages, _ = built_in_pages()
@@ -932,7 +933,7 @@ def run_one_study(args, study=None) -> int:
     # the study's page, or (with --name) a reading its page tabulates: the
     # reading's tables go into docs/<name>/ and the study's page is made again
     # with them; the reading's own page stays under runs/
-    doc_name = docs_page(args, STUDY_FILES[args.preset])
+    doc_name = docs_page(args, STUDY_FILES.get(args.preset))  # None: an axis' combination
     tabulated = args.docs and doc_name in READINGS.get(args.preset, ())
     readings = {
         name: docs / name

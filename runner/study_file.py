@@ -182,7 +182,7 @@ def read_study_file(path: Path) -> StudyFile:
     if kind != "results" and (sections or readings):
         raise InputError(f"{path}: sections and readings are a results page's, not a {kind} page's")
     rerun = read_rerun(path, data.pop("rerun", {}), kind)
-    study_fields = {f.name for f in fields(Study)} - {"name", "options"}
+    study_fields = {f.name for f in fields(Study)} - {"name", "options", "source"}
     allowed = {
         "grid": set(GRID),
         "scene": (study_fields - set(GRID)) | set(NAMED),
@@ -236,19 +236,6 @@ def read_study_file(path: Path) -> StudyFile:
             values[("scene", option)] = value
     if sweep != "cross" and not axes:
         raise InputError(f"{path}: sweep {sweep!r} needs axes (an option given a list)")
-    if kind in READINGS_KINDS:  # its page names each combination by some of its options
-        plain_axes = {key: values for (_, key), values in axes.items()}
-        labels = []
-        for choice in combinations(plain_axes, sweep):
-            try:
-                labels.append(kind_module(kind).label(choice))
-            except KeyError as missing:
-                raise InputError(
-                    f"{path}: kind {kind} compares readings by {missing.args[0]}: give it a "
-                    f"list of values (an axis)"
-                ) from None
-        if len(set(labels)) != len(labels):
-            raise InputError(f"{path}: kind {kind}: two combinations read alike ({labels})")
     grid = {k: v for (s, k), v in values.items() if s != "run"}
     if "gamma_deg" in grid:
         if "cot_gamma" in grid:
@@ -273,6 +260,18 @@ def read_study_file(path: Path) -> StudyFile:
             f"{path}: [rerun] samples must be more than [grid] samples ({study.samples}), "
             f"got {rerun['samples']}"
         )
+    if kind in READINGS_KINDS:  # its page names each combination by some of its options
+        labels = []
+        for choice in combinations(axes, sweep):
+            try:
+                labels.append(kind_module(kind).label(choice))
+            except KeyError as missing:
+                raise InputError(
+                    f"{path}: kind {kind} compares readings by {missing.args[0]}: give it a "
+                    f"list of values (an axis)"
+                ) from None
+        if len(set(labels)) != len(labels):
+            raise InputError(f"{path}: kind {kind}: two combinations read alike ({labels})")
     return StudyFile(
         study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named, path
     )
@@ -383,7 +382,7 @@ def study_file_text(described: StudyFile) -> str:
     for key, value in named.items():
         sections["scene"].append(f"{key} = {toml_value(value)}")
     for option in fields(Study):
-        if option.name in ("name", "options") or option.name in covered:
+        if option.name in ("name", "options", "source") or option.name in covered:
             continue
         value = axes.get(option.name, getattr(study, option.name))
         if option.name in axes or value != getattr(default, option.name):

@@ -129,6 +129,8 @@ FILE_CASES = [
     study("[scene]\nwall = 3\n", "[scene] wall must be among"),
     study('[scene]\nmodel = ["first-read", "first-read"]\n', "[scene] model: an axis needs values"),
     study("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
+    study("[scene]\nsource = 3\n", "[scene] has no option 'source'"),
+    study("[run]\nname = 3\n", "[run] has no option 'name'"),
     study(
         '[run]\ndt = [0.008, "x"]\n', "[run] dt must be a number in [1e-05, 0.05] (R/c), got 'x'"
     ),
@@ -246,7 +248,10 @@ PATH_CASES = [
         env={"IMPACT_RUNS": "docs"},
     ),
     command(
-        "impact", "IMPACT_RUNS: {docs_link} is inside docs/", env={"IMPACT_RUNS": "{docs_link}"}
+        "impact",
+        "IMPACT_RUNS: {docs_link} is inside docs/",
+        "IMPACT_RUNS=a link to docs/",
+        env={"IMPACT_RUNS": "{docs_link}"},
     ),
     command(
         "study demo",
