@@ -61,7 +61,10 @@ def test_a_speed_axis_runs_every_speed_on_the_same_seeds():
 
 @pytest.mark.parametrize(
     ("speeds", "words"),
-    [((0.1, 0.1), "speeds names a value twice"), ((0.1, 0.5), "speeds must be a number in")],
+    [
+        ((0.1, 0.1), "speeds names an impact.s folder twice \\(v0.1\\)"),
+        ((0.1, 0.5), "speeds must be a number in"),
+    ],
 )
 def test_bad_speeds_are_refused(speeds, words):
     with pytest.raises(InputError, match=words):
