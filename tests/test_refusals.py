@@ -132,9 +132,9 @@ FILE_CASES = [
     study("[scene]\nsource = 3\n", "[scene] has no option 'source'"),
     study("[run]\nname = 3\n", "[run] has no option 'name'"),
     study(
-        '[run]\ndt = [0.008, "x"]\n', "[run] dt must be a number in [1e-05, 0.05] (R/c), got 'x'"
+        '[run]\ndt = [0.008, "x"]\n', "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 'x'"
     ),
-    study("[run]\ndt = 0.2\n", "[run] dt must be a number in [1e-05, 0.05] (R/c), got 0.2"),
+    study("[run]\ndt = 0.2\n", "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 0.2"),
     study(
         "[run]\nevery = 10.0\n", "[run] every must be an integer in [1, 10000000] or 0, got 10.0"
     ),
@@ -264,7 +264,7 @@ PATH_CASES = [
 AXIS_CASES = [
     study(
         SMALL + "contact_a = [300.0, 400.0, 2.0]\n",
-        "f.toml: combination f_contact_a-2: contact_a must be >= 140 at this resolution",
+        "f.toml: combination f_contact_a-2: contact_a must make a R >= ",
         case="axis: the third value refused with the others",
     ),
     study(
