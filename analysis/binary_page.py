@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .estimates import study_estimates
+from .estimates import CHI2_LIMIT, lattice_constants, study_estimates
+from .fits import fit_walton, means
 from .page import pm
 from .seeds import SeedTable, seed_bootstrap, seed_tables
 
@@ -41,10 +42,49 @@ def paired_rows(rows: list[dict], wall_rows: list[dict]) -> tuple[list[dict], li
     return [r for r in rows if keys(r) in both], [r for r in wall_rows if keys(r) in both]
 
 
+def columns(table: SeedTable, keep: np.ndarray) -> SeedTable:
+    """The table at the angles where ``keep`` is True."""
+    return SeedTable(
+        table.seeds, table.gamma_deg[keep], {k: v[:, keep] for k, v in table.values.items()}
+    )
+
+
+def common_range(disk: SeedTable, wall: SeedTable) -> tuple[np.ndarray, np.ndarray, list]:
+    """The angles of each target whose mean measured cot gamma lies in the
+    range both targets cover, and that range: two fits compared over unlike
+    incidences would compare the incidences, not the targets."""
+    cot_disk, cot_wall = disk.mean("cot_gamma"), wall.mean("cot_gamma")
+    low = max(np.nanmin(cot_disk), np.nanmin(cot_wall))
+    high = min(np.nanmax(cot_disk), np.nanmax(cot_wall))
+    inside = lambda cot: (cot >= low) & (cot <= high)  # noqa: E731
+    return inside(cot_disk), inside(cot_wall), [float(low), float(high)]
+
+
+def in_angles(rows: list[dict], lattice: str, gammas) -> list[dict]:
+    """A lattice's rows at these angles (and every other lattice's rows)."""
+    chosen = {float(g) for g in gammas}
+    return [r for r in rows if r["study_lattice"] != lattice or float(r["gamma_deg"]) in chosen]
+
+
+def difference_systematic(disk_fit: dict, wall_fit: dict) -> float:
+    """Half the range of mu (disks) - mu (wall) over the fitting choices that
+    both targets were fitted with (the same choice on both)."""
+    shifts = [
+        a["mu"] - b["mu"]
+        for a in disk_fit["variants"]
+        for b in wall_fit["variants"]
+        if (a["e"], a["weights"], a["angles"]) == (b["e"], b["weights"], b["angles"])
+    ]
+    return 0.5 * (max(shifts) - min(shifts)) if shifts else float("nan")
+
+
 def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) -> dict:
     """Per lattice and angle: e, beta, cot gamma and the vibrations of the
     binary impacts and of the wall's, their differences, each with its seed-
-    bootstrap error, and the verdicts; both studies' fits; the momenta.
+    bootstrap error, and the verdicts; both studies' fits over the cot gamma
+    range both cover, and the difference of their measured-way Walton mu with
+    its seed error (both studies resampled together) and its systematic error;
+    the momenta.
 
     Parameters
     ----------
@@ -66,6 +106,18 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
     ]
     tables = seed_tables(labelled, QUANTITIES)
     lattices = sorted({r["study_lattice"] for r in disk_rows})
+    ranges = {
+        lattice: common_range(tables[f"{lattice}|disk"], tables[f"{lattice}|wall"])
+        for lattice in lattices
+    }
+    K = {
+        (lattice, target): lattice_constants(chosen, lattice)[2]
+        for lattice in lattices
+        for target, chosen in (("disk", disk_rows), ("wall", wall_rows))
+    }
+
+    def walton_mu(table: SeedTable, keep: np.ndarray, k: float) -> float:
+        return float(fit_walton(means(columns(table, keep)), k)[0])
 
     def statistic(ts: dict[str, SeedTable]) -> dict:
         out = {}
@@ -76,6 +128,10 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
                 out[f"{lattice}/{q}/wall"] = wall.mean(q)
             for q in ("e", "beta"):
                 out[f"{lattice}/{q}/difference"] = disk.mean(q) - wall.mean(q)
+            keep_disk, keep_wall, _ = ranges[lattice]
+            out[f"{lattice}/mu/difference"] = walton_mu(
+                disk, keep_disk, K[(lattice, "disk")]
+            ) - walton_mu(wall, keep_wall, K[(lattice, "wall")])
         return out
 
     central = statistic(tables)
@@ -94,7 +150,7 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
             "impacts": tables[f"{lattice}|disk"].counts().tolist(),
         }
         for key in central:
-            if key.startswith(f"{lattice}/"):
+            if key.startswith(f"{lattice}/") and key != f"{lattice}/mu/difference":
                 short = key[len(lattice) + 1 :].replace("/", "_")
                 entry[short] = np.asarray(central[key]).tolist()
                 entry[short + "_error"] = np.asarray(error[key]).tolist()
@@ -104,10 +160,40 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
                 for d, s in zip(entry[f"{q}_difference"], entry[f"{q}_difference_error"])
             ]
         out["lattices"][lattice] = entry
+    disk_fit_rows, wall_fit_rows = disk_rows, wall_rows
+    for lattice in lattices:
+        keep_disk, keep_wall, _ = ranges[lattice]
+        disk_fit_rows = in_angles(
+            disk_fit_rows, lattice, tables[f"{lattice}|disk"].gamma_deg[keep_disk]
+        )
+        wall_fit_rows = in_angles(
+            wall_fit_rows, lattice, tables[f"{lattice}|wall"].gamma_deg[keep_wall]
+        )
     out["fits"] = {
-        "disk": study_estimates(disk_rows, resamples)[0]["lattices"],
-        "wall": study_estimates(wall_rows, resamples)[0]["lattices"],
+        "disk": study_estimates(disk_fit_rows, resamples)[0]["lattices"],
+        "wall": study_estimates(wall_fit_rows, resamples)[0]["lattices"],
     }
+    out["mu_difference"] = {}
+    for lattice in lattices:
+        keep_disk, keep_wall, cot_range = ranges[lattice]
+        disk_fit, wall_fit = out["fits"]["disk"][lattice], out["fits"]["wall"][lattice]
+        failed = max(disk_fit["walton"]["measured"]["chi2"], wall_fit["walton"]["measured"]["chi2"])
+        systematic = difference_systematic(disk_fit["walton"], wall_fit["walton"])
+        sd = float(error[f"{lattice}/mu/difference"])
+        total = float(np.hypot(sd, systematic if failed > CHI2_LIMIT else 0.0))
+        value = float(central[f"{lattice}/mu/difference"])
+        out["mu_difference"][lattice] = {
+            "cot_gamma_range": cot_range,
+            "gamma_deg_disk": tables[f"{lattice}|disk"].gamma_deg[keep_disk].tolist(),
+            "gamma_deg_wall": tables[f"{lattice}|wall"].gamma_deg[keep_wall].tolist(),
+            "value": value,
+            "sd": sd,
+            "systematic": systematic,
+            "fits_fail": bool(failed > CHI2_LIMIT),
+            "error": total,
+            "z": abs(value) / total if total > 0 else float("nan"),
+            "verdict": verdict(value, total),
+        }
     for column, key in (("momentum_change", "momentum"), ("angular_momentum_change", "angular")):
         out[f"largest_{key}_change"] = max(float(r[column]) for r in disk_rows)
     return out
@@ -148,23 +234,39 @@ def draw(numbers: dict, folder: Path | str, name: str) -> None:
         plt.close(fig)
 
 
+def with_systematic(fit: dict, theory: str, parameter: str) -> str:
+    """A measured-way parameter +- its seed error, then +- its systematic
+    error where the fit's chi2/dof is above the limit."""
+    way = fit[theory]["measured"]
+    cell = pm(way.get(parameter), way.get(f"{parameter}_sd"))
+    systematic = fit[theory].get("systematic", {}).get(parameter)
+    if cell != "-" and way["chi2"] > CHI2_LIMIT and systematic is not None:
+        cell += f" +- {systematic:.3f}"
+    return cell
+
+
 def fit_rows(fits: dict) -> list[str]:
     """Walton's and the compliant fits and the model-free measures, both targets."""
     lines = [
-        "| lattice | hits | Walton mu | Walton beta0 | chi2/dof | compliant mu | "
-        "e near normal | beta at cot gamma >= 4 | mu_eff on the sliding branch |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| lattice | hits | angles | Walton mu | Walton beta0 | chi2/dof | compliant mu | "
+        "chi2/dof | e near normal | beta at cot gamma >= 4 | mu_eff on the sliding branch |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for lattice in fits["disk"]:
         for target in TARGETS:
             f = fits[target][lattice]
             walton, compliant = f["walton"]["measured"], f.get("compliant", {}).get("measured", {})
             m = f["measures"]
+            compliant_cells = (
+                f"{with_systematic(f, 'compliant', 'mu')} | {compliant['chi2']:.1f}"
+                if compliant
+                else "- | -"
+            )
             lines.append(
-                f"| {lattice} | {'a disk' if target == 'disk' else 'the wall'} | "
-                f"{pm(walton['mu'], walton.get('mu_sd'))} | "
-                f"{pm(walton['beta0'], walton.get('beta0_sd'))} | {walton['chi2']:.1f} | "
-                f"{pm(compliant.get('mu'), compliant.get('mu_sd'))} | "
+                f"| {lattice} | {'a disk' if target == 'disk' else 'the wall'} | {f['angles']} | "
+                f"{with_systematic(f, 'walton', 'mu')} | "
+                f"{with_systematic(f, 'walton', 'beta0')} | {walton['chi2']:.1f} | "
+                f"{compliant_cells} | "
                 f"{pm(m['e_normal']['value'], m['e_normal']['sd'])} | "
                 f"{pm(m['beta_normal']['value'], m['beta_normal']['sd'])} | "
                 f"{pm(m['mu_eff_top']['value'], m['mu_eff_top']['sd'])} |"
@@ -263,14 +365,40 @@ def wall_section(name: str, numbers: dict, figure_dir: str) -> list[str]:
         ]
     lines += [
         "Walton's law and the compliant model fitted the measured way (e per angle, K from "
-        "the disks' measured inertia), with the model-free measures beside them "
-        "(analysis.estimates); chi2/dof above 2: the law does not describe the data.",
+        "the disks' measured inertia, each angle weighted by the standard error of its mean "
+        "beta), each target over the angles whose mean measured cot gamma lies in the range "
+        "both targets cover (`angles`), with the model-free measures beside them "
+        f"(analysis.estimates). chi2/dof above {CHI2_LIMIT:g}: the law does not describe the "
+        "data, and the parameter gets its systematic error (half its range over the eight "
+        "fitting choices) after its seed error.",
         "",
         *fit_rows(numbers["fits"]),
         "",
+        *mu_difference_lines(numbers.get("mu_difference", {})),
         f"![e, two disks and the wall at {speeds} c]({figure_dir}/binary_e_{name}.png)",
         "",
         f"![beta, two disks and the wall at {speeds} c]({figure_dir}/binary_beta_{name}.png)",
         "",
     ]
     return lines
+
+
+def mu_difference_lines(differences: dict) -> list[str]:
+    """Walton's mu of two disks less the wall's, with both errors and the verdict."""
+    lines = []
+    for lattice, d in differences.items():
+        low, high = d["cot_gamma_range"]
+        systematic = (
+            f" +- {d['systematic']:.3f} (the fitting choices: the spread of the difference "
+            "over the same choice on both)"
+            if d["fits_fail"]
+            else ""
+        )
+        lines += [
+            f"- {lattice}: Walton's mu (the measured way), two disks less the wall, over cot "
+            f"gamma {low:.3f} to {high:.3f} ({len(d['gamma_deg_disk'])} and "
+            f"{len(d['gamma_deg_wall'])} angles): {pm(d['value'], d['sd'])} (seed error, both "
+            f"studies resampled together){systematic}; {d['z']:.1f} combined errors: "
+            f"**{d['verdict']}** (the same within {SAME:g}, differs beyond {DIFFERENT:g}).",
+        ]
+    return lines + ([""] if lines else [])

@@ -46,16 +46,40 @@ def means(table: SeedTable) -> Means:
     -------
     Means
         psi, e and beta averaged per angle and the standard error of the mean
-        of beta (sd / sqrt(n)); an angle whose samples agree exactly gets the
-        median standard error, not infinite weight.
+        of beta (sd / sqrt(n)); only an angle whose samples agree exactly (a
+        standard error of exactly 0) gets the median standard error instead,
+        not infinite weight.
     """
     keep = table.counts() > 1
     se = table.standard_error("beta")[keep]
-    finite = se[np.isfinite(se) & (se > 0)]
-    floor = np.median(finite) if finite.size else 1.0
-    # an angle whose samples agree exactly would get infinite weight
-    se = np.where(np.isfinite(se) & (se > 0.1 * floor), se, floor)
-    return Means(table.mean("cot_gamma")[keep], table.mean("e")[keep], table.mean("beta")[keep], se)
+    return Means(
+        table.mean("cot_gamma")[keep],
+        table.mean("e")[keep],
+        table.mean("beta")[keep],
+        weights_floor(se),
+    )
+
+
+def weights_floor(se: np.ndarray) -> np.ndarray:
+    """Standard errors with only the exactly zero (or undefined) ones replaced
+    by the median of the others (1 if there are none): an angle whose samples
+    agree exactly would get infinite weight. Every other standard error, however
+    small, is kept, so the fit weights each angle as documented.
+
+    Parameters
+    ----------
+    se : numpy.ndarray
+        Standard errors of the per-angle means.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same, with the zeros replaced.
+    """
+    se = np.asarray(se, float)
+    usable = np.isfinite(se) & (se > 0)
+    floor = np.median(se[usable]) if usable.any() else 1.0
+    return np.where(usable, se, floor)
 
 
 def _scale(data: Means, weighted: bool) -> np.ndarray:

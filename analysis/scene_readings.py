@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .fits import Means, fit_walton, reduced_chi2
+from .fits import Means, fit_walton, reduced_chi2, weights_floor
 from .readings import (
     N_WALL,
     WALL_FIXED,
@@ -75,12 +75,10 @@ def angle_groups(rows: list[dict]) -> list[np.ndarray]:
 
 
 def angle_means(groups: list[np.ndarray]) -> Means:
-    """Per-angle means and standard errors of beta (floored as analysis.fits.means does)."""
+    """Per-angle means and standard errors of beta (only an exactly zero one
+    replaced, as analysis.fits.means does)."""
     se = np.array([g[:, 2].std(ddof=1) / np.sqrt(len(g)) if len(g) > 1 else np.nan for g in groups])
-    finite = se[np.isfinite(se) & (se > 0)]
-    floor = np.median(finite) if finite.size else 1.0
-    se = np.where(np.isfinite(se) & (se > 0.1 * floor), se, floor)
-    return Means(*(np.array([g[:, k].mean() for g in groups]) for k in range(3)), se)
+    return Means(*(np.array([g[:, k].mean() for g in groups]) for k in range(3)), weights_floor(se))
 
 
 def walton_per_angle(rows: list[dict], resamples: int = 100) -> dict | None:

@@ -102,6 +102,23 @@ def resample_indices(seeds: int, resamples: int, rng_seed: int = RNG_SEED) -> np
     return rng.integers(0, seeds, size=(resamples, seeds))
 
 
+def seed_draws(
+    tables: dict[str, SeedTable],
+    statistic: Callable[[dict[str, SeedTable]], dict],
+    resamples: int = 200,
+    rng_seed: int = RNG_SEED,
+) -> dict[str, np.ndarray]:
+    """A study's numbers on every resample of whole seeds (``seed_bootstrap``
+    gives their standard deviations): key -> (resamples, ...) array."""
+    seeds = len(next(iter(tables.values())).seeds)
+    draws: dict = {}
+    for index in resample_indices(seeds, resamples, rng_seed):
+        out = statistic({name: table.take(index) for name, table in tables.items()})
+        for key, value in out.items():
+            draws.setdefault(key, []).append(np.asarray(value, float))
+    return {key: np.array(values) for key, values in draws.items()}
+
+
 def seed_bootstrap(
     tables: dict[str, SeedTable],
     statistic: Callable[[dict[str, SeedTable]], dict],
@@ -128,15 +145,8 @@ def seed_bootstrap(
         The keys of ``statistic``'s dict: the standard deviation (ddof 1) of
         each over the resamples where it is defined.
     """
-    seeds = len(next(iter(tables.values())).seeds)
-    draws: dict = {}
-    for index in resample_indices(seeds, resamples, rng_seed):
-        out = statistic({name: table.take(index) for name, table in tables.items()})
-        for key, value in out.items():
-            draws.setdefault(key, []).append(np.asarray(value, float))
     sd = {}
-    for key, values in draws.items():
-        values = np.array(values)
+    for key, values in seed_draws(tables, statistic, resamples, rng_seed).items():
         finite = np.sum(np.isfinite(values), axis=0)
         with np.errstate(invalid="ignore", divide="ignore"):
             spread = np.nanstd(np.where(finite > 1, values, 0.0), axis=0, ddof=1)

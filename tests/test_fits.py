@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from analysis.estimates import CHI2_LIMIT, PAPER, study_estimates
-from analysis.fits import fit_compliant, fit_walton, means
+from analysis.fits import Means, fit_compliant, fit_walton, means, weights_floor
 from analysis.seeds import seed_tables
 from analysis.theory import Compliant, compliant_beta, nu_for_eta, walton_beta
 from tests.synthetic import impact_rows
@@ -102,3 +102,28 @@ def test_unweighted_and_weighted_fits_agree_on_exact_data():
     for weighted in (False, True):
         assert fit_walton(data, 3.0, 0.8, weighted) == pytest.approx([0.2, 0.5], abs=1e-6)
     assert np.all(data.beta_se > 0)
+
+
+def test_only_an_exactly_zero_standard_error_is_replaced():
+    """A tiny standard error keeps its weight (docs: se-weighted fits); only a
+    zero one, which would weigh infinitely, becomes the median of the others."""
+    se = np.array([0.08, 0.05, 0.002, 0.0, np.nan])
+    assert weights_floor(se).tolist() == [0.08, 0.05, 0.002, 0.05, 0.05]
+    rows = impact_rows("random", lambda psi: walton_beta(psi, 0.8, 0.2, 0.5, 3.0), seeds=8)
+    table = seed_tables(rows)["random"]
+    expected = table.standard_error("beta")[table.counts() > 1]
+    assert np.all(expected > 0)
+    assert means(table).beta_se == pytest.approx(expected, rel=0, abs=0)
+
+
+def test_the_grazing_angles_carry_their_weight():
+    """Three angles with standard errors 100 times below the others pull the
+    weighted fit to their own mu (the old floor at a tenth of the median did not)."""
+    psi = np.array([0.03, 0.05, 0.09, 0.3, 0.6, 1.0, 2.0, 4.0])
+    K = 3.0
+    beta = walton_beta(psi, 0.8, 0.2, 0.3, K)
+    beta[:3] = walton_beta(psi[:3], 0.8, 0.3, 0.3, K)  # a grip of its own at grazing
+    se = np.where(psi < 0.1, 1e-4, 1e-2)
+    data = Means(psi, np.full_like(psi, 0.8), beta, weights_floor(se))
+    mu, _ = fit_walton(data, K, 0.8, weighted=True)
+    assert mu == pytest.approx(0.3, abs=0.01)

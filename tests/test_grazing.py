@@ -86,3 +86,36 @@ def test_a_reading_is_a_row_of_the_page_with_what_differs(tmp_path):
     first = page.read_text()  # the same page again from the same tables
     report_from_tables(study, page, resamples=20, readings={"stiff": stiff, "fast": fast})
     assert page.read_text() == first
+
+
+def independent_angles(angles: int, seeds: int, rng_seed: int):
+    from analysis.seeds import SeedTable
+
+    rng = np.random.default_rng(rng_seed)
+    e = 1.0 + 0.1 * rng.standard_normal((seeds, angles))
+    return SeedTable(np.arange(seeds), np.linspace(30.0, 86.0, angles), {"e": e, "beta": e})
+
+
+def test_the_look_elsewhere_test_agrees_with_sidak_for_independent_angles():
+    """Independent angles: the chance that the largest of A standardised means
+    reaches z is 1 - (1 - p)^A with p the one-sided normal tail (Sidak)."""
+    from scipy.stats import norm
+
+    from analysis.grazing import look_elsewhere
+
+    for z in (2.0, 2.5, 3.0):
+        expected = 1.0 - (1.0 - norm.sf(z)) ** 14
+        found = look_elsewhere(independent_angles(14, 400, 1), z)
+        assert found["angles"] == 14
+        assert found["p"] == pytest.approx(expected, abs=0.25 * expected + 0.003)
+        assert found["z"] < z  # the largest of 14 is less surprising than one
+
+
+def test_one_angle_alone_needs_no_correction():
+    """With one angle the global p is the normal tail of its z."""
+    from scipy.stats import norm
+
+    from analysis.grazing import look_elsewhere
+
+    found = look_elsewhere(independent_angles(1, 400, 2), 2.0)
+    assert found["p"] == pytest.approx(norm.sf(2.0), abs=0.008)
