@@ -132,9 +132,12 @@ FILE_CASES = [
     study("[scene]\nsource = 3\n", "[scene] has no option 'source'"),
     study("[run]\nname = 3\n", "[run] has no option 'name'"),
     study(
-        '[run]\ndt = [0.008, "x"]\n', "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 'x'"
+        '[run]\ndt = [0.008, "x"]\n',
+        "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 'x'",
     ),
-    study("[run]\ndt = 0.2\n", "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 0.2"),
+    study(
+        "[run]\ndt = 0.2\n", "[run] dt must be a number in [1e-05, 0.05] (R/c) or 'auto', got 0.2"
+    ),
     study(
         "[run]\nevery = 10.0\n", "[run] every must be an integer in [1, 10000000] or 0, got 10.0"
     ),
