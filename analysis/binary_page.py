@@ -16,6 +16,7 @@ import numpy as np
 
 from .estimates import CHI2_LIMIT, lattice_constants, study_estimates
 from .fits import fit_walton, means
+from .normal_check import robustness
 from .page import pm
 from .seeds import SeedTable, seed_bootstrap, seed_tables
 
@@ -76,6 +77,23 @@ def difference_systematic(disk_fit: dict, wall_fit: dict) -> float:
         if (a["e"], a["weights"], a["angles"]) == (b["e"], b["weights"], b["angles"])
     ]
     return 0.5 * (max(shifts) - min(shifts)) if shifts else float("nan")
+
+
+THIS_STUDY = "two disks (this study)"
+
+
+def normal_checks(
+    rows: list[dict], walls: dict[str, list[dict]], pairs: dict[str, list[dict]], resamples: int
+) -> dict:
+    """The normals' check (analysis.normal_check) of this study's pairs, of the
+    other pair studies (smooth baselines, ...), and of each wall study's
+    impacts of this study's seeds and angles."""
+    checks = {THIS_STUDY: robustness(rows, resamples)}
+    for name, pair in pairs.items():
+        checks[f"two disks, docs/{name}"] = robustness(pair, resamples)
+    for name, wall in walls.items():
+        checks[f"the wall, docs/{name}"] = robustness(paired_rows(rows, wall)[1], resamples)
+    return checks
 
 
 def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) -> dict:
@@ -177,10 +195,12 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
     for lattice in lattices:
         keep_disk, keep_wall, cot_range = ranges[lattice]
         disk_fit, wall_fit = out["fits"]["disk"][lattice], out["fits"]["wall"][lattice]
-        failed = max(disk_fit["walton"]["measured"]["chi2"], wall_fit["walton"]["measured"]["chi2"])
+        # a chi2 that is not finite (a mean without spread) fails as well
+        chi2 = [f["walton"]["measured"]["chi2"] for f in (disk_fit, wall_fit)]
+        fails = any(c is None or not c <= CHI2_LIMIT for c in chi2)
         systematic = difference_systematic(disk_fit["walton"], wall_fit["walton"])
         sd = float(error[f"{lattice}/mu/difference"])
-        total = float(np.hypot(sd, systematic if failed > CHI2_LIMIT else 0.0))
+        total = float(np.hypot(sd, systematic if fails else 0.0))
         value = float(central[f"{lattice}/mu/difference"])
         out["mu_difference"][lattice] = {
             "cot_gamma_range": cot_range,
@@ -189,13 +209,37 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
             "value": value,
             "sd": sd,
             "systematic": systematic,
-            "fits_fail": bool(failed > CHI2_LIMIT),
+            "fits_fail": fails,
             "error": total,
             "z": abs(value) / total if total > 0 else float("nan"),
             "verdict": verdict(value, total),
         }
     for column, key in (("momentum_change", "momentum"), ("angular_momentum_change", "angular")):
         out[f"largest_{key}_change"] = max(float(r[column]) for r in disk_rows)
+    out["first_touch"] = first_touch_incidence(disk_rows)
+    return out
+
+
+def first_touch_incidence(rows: list[dict]) -> dict | None:
+    """Per lattice and nominal angle, the mean incidence at the first touch
+    (degrees, from each impact's cot gamma there) and its relative
+    departure from the nominal angle: how well the aim by the contact hit."""
+    if not all(r.get("cot_gamma_first_touch") not in (None, "") for r in rows):
+        return None  # tables from before the normals
+    out = {}
+    for lattice in sorted({r["study_lattice"] for r in rows}):
+        by_angle: dict[float, list[float]] = {}
+        for r in rows:
+            if r["study_lattice"] == lattice:
+                angle = np.degrees(np.arctan2(1.0, float(r["cot_gamma_first_touch"])))
+                by_angle.setdefault(float(r["gamma_deg"]), []).append(float(angle))
+        gammas = sorted(by_angle)
+        mean = [float(np.mean(by_angle[g])) for g in gammas]
+        out[lattice] = {
+            "gamma_deg": gammas,
+            "incidence_deg": mean,
+            "relative": [m / g - 1.0 for m, g in zip(mean, gammas)],
+        }
     return out
 
 
@@ -240,7 +284,9 @@ def with_systematic(fit: dict, theory: str, parameter: str) -> str:
     way = fit[theory]["measured"]
     cell = pm(way.get(parameter), way.get(f"{parameter}_sd"))
     systematic = fit[theory].get("systematic", {}).get(parameter)
-    if cell != "-" and way["chi2"] > CHI2_LIMIT and systematic is not None:
+    # a chi2 that is not finite (None in fits.json: a mean without spread) fails too
+    fails = way["chi2"] is None or way["chi2"] > CHI2_LIMIT
+    if cell != "-" and fails and systematic is not None:
         cell += f" +- {systematic:.3f}"
     return cell
 
@@ -258,14 +304,14 @@ def fit_rows(fits: dict) -> list[str]:
             walton, compliant = f["walton"]["measured"], f.get("compliant", {}).get("measured", {})
             m = f["measures"]
             compliant_cells = (
-                f"{with_systematic(f, 'compliant', 'mu')} | {compliant['chi2']:.1f}"
+                f"{with_systematic(f, 'compliant', 'mu')} | {pm(compliant['chi2'], digits=1)}"
                 if compliant
                 else "- | -"
             )
             lines.append(
                 f"| {lattice} | {'a disk' if target == 'disk' else 'the wall'} | {f['angles']} | "
                 f"{with_systematic(f, 'walton', 'mu')} | "
-                f"{with_systematic(f, 'walton', 'beta0')} | {walton['chi2']:.1f} | "
+                f"{with_systematic(f, 'walton', 'beta0')} | {pm(walton['chi2'], digits=1)} | "
                 f"{compliant_cells} | "
                 f"{pm(m['e_normal']['value'], m['e_normal']['sd'])} | "
                 f"{pm(m['beta_normal']['value'], m['beta_normal']['sd'])} | "
@@ -274,37 +320,44 @@ def fit_rows(fits: dict) -> list[str]:
     return lines
 
 
-def below_nominal(numbers: dict) -> tuple[int, int]:
-    """At how many angles the measured cot gamma of two disks lies below the
-    nominal one, of how many."""
-    below = total = 0
-    for entry in numbers["lattices"].values():
-        for measured, nominal in zip(entry["cot_gamma_disk"], entry["cot_gamma_nominal"]):
-            below += measured < nominal
-            total += 1
-    return below, total
+def aim_sentence(numbers: dict) -> str:
+    """How far the mean incidence at first touch is from the nominal angle."""
+    touch = numbers.get("first_touch")
+    if not touch:
+        return (
+            "the nominal angle set the first touch of rigid circles of radius R (tables made "
+            "before the aim by the contact)"
+        )
+    worst = max(abs(x) for entry in touch.values() for x in entry["relative"])
+    count = sum(len(entry["relative"]) for entry in touch.values())
+    return (
+        "the disk is aimed by the contact (builder/binary.py): the mean incidence at the "
+        f"first touch is within {100 * worst:.2f} % of the nominal angle at all {count} "
+        "angles"
+    )
 
 
-def section(by_wall: dict[str, dict], figure_dir: str) -> list[str]:
-    """The page's section: for each wall study, the comparison's tables and figures."""
+def section(by_wall: dict[str, dict], figure_dir: str, checks: dict | None = None) -> list[str]:
+    """The page's section: for each wall study, the comparison's tables and
+    figures; e and beta withheld where the normals' check (``checks``,
+    ``normal_checks``) finds them not robust."""
     by_wall = {name: numbers for name, numbers in by_wall.items() if numbers}
     if not by_wall:
         return []
     first = next(iter(by_wall.values()))
-    below, total = below_nominal(first)
     lines = [
         "## Two disks beside the same disks on the wall",
         "",
         "Each seed's disk hits a second disk here and the wall in the wall studies below "
         "(pairs of impacts of the same seed, lattice and nominal angle). e and beta of "
         "two disks are those of the contact points' relative velocity at the line of centres "
-        "where the centres come closest (docs/model.md, 'Two disks'); cot gamma is measured "
-        "there too: the nominal angle sets the first touch of rigid circles, and the line of "
-        "centres turns during the contact, so the measured cot gamma lies below the nominal "
-        f"one at {below} of {total} angles (the figures plot the measured one; pairs are "
-        "compared by nominal angle). Every +- is the seed bootstrap's error (whole seeds of "
-        "both studies resampled together); a difference is 'same' within 2 errors, "
-        "'differs' beyond 3.",
+        "where the centres come closest (docs/model.md, 'Two disks'), and cot gamma is "
+        f"measured there too; {aim_sentence(first)}. The line of centres turns during the "
+        "contact, so the cot gamma at the apse is not the nominal one (the figures plot the "
+        "measured one; pairs are compared by nominal angle). An e or beta that the normals' "
+        "check (below, 'The normal') finds not robust is withheld, with its difference. Every "
+        "+- is the seed bootstrap's error (whole seeds of both studies resampled together); "
+        "a difference is 'same' within 2 errors, 'differs' beyond 3.",
         "",
         "The relative normal speed of two disks is v_n; in the centre of mass each disk "
         "meets the contact at about v_n / 2, with a quarter of the kinetic energy per mass "
@@ -320,13 +373,33 @@ def section(by_wall: dict[str, dict], figure_dir: str) -> list[str]:
         f"{first['largest_angular_change']:.1e}.",
         "",
     ]
+    checks = checks or {}
     for name, numbers in by_wall.items():
-        lines += wall_section(name, numbers, figure_dir)
+        robust = {
+            "disk": checks.get(THIS_STUDY),
+            "wall": checks.get(f"the wall, docs/{name}"),
+        }
+        lines += wall_section(name, numbers, figure_dir, robust)
     return lines
 
 
-def wall_section(name: str, numbers: dict, figure_dir: str) -> list[str]:
+def robust_at(check: dict | None, lattice: str, gamma: float, quantity: str) -> bool:
+    """Whether the normals' check finds this angle's mean robust (True where
+    there is no check: tables from before it)."""
+    if not check or lattice not in check["lattices"]:
+        return True
+    entry = check["lattices"][lattice]
+    for j, g in enumerate(entry["gamma_deg"]):
+        if abs(g - gamma) < 1e-9:
+            return bool(entry[f"{quantity}_robust"][j])
+    return True
+
+
+def wall_section(
+    name: str, numbers: dict, figure_dir: str, robust: dict | None = None
+) -> list[str]:
     """One wall study's comparison: per lattice and angle, then the fits."""
+    robust = robust or {}
     speeds = ", ".join(f"{v:g}" for v in numbers["wall_vn"])
     lines = [
         f"### On the wall at v_n = {speeds} c (`docs/{name}`)",
@@ -344,23 +417,43 @@ def wall_section(name: str, numbers: dict, figure_dir: str) -> list[str]:
             "vibration: disk, wall |",
             "|---|---|---|---|---|---|---|---|---|---|",
         ]
+        verdicts = {"e": [], "beta": []}
         for j, gamma in enumerate(entry["gamma_deg"]):
-            cell = lambda key: pm(entry[key][j], entry[key + "_error"][j])  # noqa: E731
+            kept = {
+                (q, t): robust_at(robust.get(t), lattice, gamma, q)
+                for q in ("e", "beta")
+                for t in ("disk", "wall")
+            }
+
+            def cell(key: str, j=j, kept=kept) -> str:
+                quantity, target = key.split("_")[0], key.split("_")[-1]
+                shown = (
+                    kept[(quantity, "disk")] and kept[(quantity, "wall")]
+                    if target == "difference"
+                    else kept.get((quantity, target), True)
+                )
+                return pm(entry[key][j], entry[key + "_error"][j]) if shown else "withheld"
+
+            for q in ("e", "beta"):
+                both = kept[(q, "disk")] and kept[(q, "wall")]
+                verdicts[q].append(entry[f"{q}_verdict"][j] if both else "withheld")
             lines.append(
                 f"| {gamma:.1f} | {cell('cot_gamma_disk')} | {cell('e_disk')} | "
-                f"{cell('e_wall')} | {cell('e_difference')} ({entry['e_verdict'][j]}) | "
+                f"{cell('e_wall')} | {cell('e_difference')} ({verdicts['e'][j]}) | "
                 f"{cell('beta_disk')} | {cell('beta_wall')} | {cell('beta_difference')} "
-                f"({entry['beta_verdict'][j]}) | "
+                f"({verdicts['beta'][j]}) | "
                 f"{entry['vibration_disk_disk'][j]:.3f}, {entry['vibration_wall_disk'][j]:.3f} | "
                 f"{entry['vibration_disk_wall'][j]:.3f}, {entry['vibration_wall_wall'][j]:.3f} |"
             )
-        counts = {v: entry["e_verdict"].count(v) for v in ("same", "undecided", "differs")}
-        beta_counts = {v: entry["beta_verdict"].count(v) for v in ("same", "undecided", "differs")}
+        kinds = ("same", "undecided", "differs", "withheld")
+        counts = {v: verdicts["e"].count(v) for v in kinds}
+        beta_counts = {v: verdicts["beta"].count(v) for v in kinds}
         lines += [
             "",
             f"e: the same at {counts['same']} angles, undecided at {counts['undecided']}, "
-            f"different at {counts['differs']}; beta: the same at {beta_counts['same']}, "
-            f"undecided at {beta_counts['undecided']}, different at {beta_counts['differs']}.",
+            f"different at {counts['differs']}, withheld at {counts['withheld']}; beta: the same "
+            f"at {beta_counts['same']}, undecided at {beta_counts['undecided']}, different at "
+            f"{beta_counts['differs']}, withheld at {beta_counts['withheld']}.",
             "",
         ]
     lines += [

@@ -60,12 +60,15 @@ def look_elsewhere(table: SeedTable, z: float, resamples: int = LOOK_ELSEWHERE_R
         largest = np.nanmax((draws - centre) / spread, axis=1)
     if not np.isfinite(z):
         return {"angles": int(len(centre)), "resamples": resamples, "p": np.nan, "z": np.nan}
-    p = (np.sum(largest >= z) + 1) / (resamples + 1)
+    reached = int(np.sum(largest >= z))
+    p = (reached + 1) / (resamples + 1)
     return {
         "angles": int(np.sum(np.isfinite(centre))),
         "resamples": resamples,
         "p": float(p),
         "z": float(norm.isf(p)),
+        # no resample reached z: p is a bound, and z at least this
+        "bound": reached == 0,
     }
 
 
@@ -92,8 +95,26 @@ def peak(x, y) -> tuple[float, float] | None:
     return float(top), float(c - b * b / (4 * a))
 
 
-def grazing_numbers(rows: list[dict], resamples: int = 200) -> dict:
-    """Per lattice: tan gamma, mean e with errors, the peak, and the largest mean."""
+def grazing_numbers(rows: list[dict], resamples: int = 200, check: dict | None = None) -> dict:
+    """Per lattice: tan gamma, mean e with errors, the peak, the largest mean
+    and, with the normals' check (``analysis.normal_check.robustness``), each
+    angle's verdict and the largest mean that the normals agree on.
+
+    Parameters
+    ----------
+    rows : list of dict
+        impacts.csv rows.
+    resamples : int
+        Seed-bootstrap resamples.
+    check : dict, optional
+        The normals' check of the same rows.
+
+    Returns
+    -------
+    dict
+        Per lattice; ``largest`` and ``largest_robust`` each with its e,
+        error, local z and global (look-elsewhere) p and z.
+    """
     tables = seed_tables(rows, ("e", "beta"))
 
     def tan(table: SeedTable) -> np.ndarray:
@@ -112,9 +133,34 @@ def grazing_numbers(rows: list[dict], resamples: int = 200) -> dict:
     out = {}
     for name, t in tables.items():
         e, e_err = central[name + "/e"], error[name + "/e"]
-        top = int(np.nanargmax(e))
         above = np.nan_to_num(t.values["e"]) > 1.0
-        z = float((e[top] - 1.0) / e_err[top]) if e_err[top] > 0 else float("nan")
+        entry = (check or {}).get("lattices", {}).get(name)
+        robust = spread = contact = None
+        if entry is not None:
+            index = {round(g, 9): j for j, g in enumerate(entry["gamma_deg"])}
+            at = [index[round(float(g), 9)] for g in t.gamma_deg]
+            robust = np.array([bool(entry["e_robust"][j]) for j in at])
+            spread = np.array([float(entry["e_spread"][j]) for j in at])
+            if "e_contact_robust" in entry:  # the headline and the impulse's normal alone
+                contact = np.array([bool(entry["e_contact_robust"][j]) for j in at])
+
+        def largest(among: np.ndarray) -> dict | None:
+            if not among.any():
+                return None
+            top = int(np.nanargmax(np.where(among, e, -np.inf)))
+            z = float((e[top] - 1.0) / e_err[top]) if e_err[top] > 0 else float("nan")
+            return {
+                "gamma_deg": float(t.gamma_deg[top]),
+                "e": float(e[top]),
+                "error": float(e_err[top]),
+                "z": z,
+                # the null of the largest of all the angles: conservative for a subset
+                "global": look_elsewhere(t, z),
+                "robust": True if robust is None else bool(robust[top]),
+                "spread": None if spread is None else float(spread[top]),
+            }
+
+        everywhere = np.isfinite(e)
         out[name] = {
             "tan_gamma": tan(t).tolist(),
             "gamma_deg": t.gamma_deg.tolist(),
@@ -126,14 +172,15 @@ def grazing_numbers(rows: list[dict], resamples: int = 200) -> dict:
             "peak_tan_gamma_error": float(error[name + "/peak_x"]),
             "peak_e": central[name + "/peak_e"],
             "peak_e_error": float(error[name + "/peak_e"]),
-            "largest": {
-                "gamma_deg": float(t.gamma_deg[top]),
-                "e": float(e[top]),
-                "error": float(e_err[top]),
-                "z": z,
-                "global": look_elsewhere(t, z),
-            },
+            "largest": largest(everywhere),
+            "largest_robust": largest(everywhere if robust is None else everywhere & robust),
+            # where the headline and the impulse's normal agree, the first touch set aside
+            "largest_contact": None if contact is None else largest(everywhere & contact),
         }
+        if robust is not None:
+            out[name].update(
+                robust=robust.tolist(), spread=spread.tolist(), normals=check["normals"]
+            )
     return out
 
 
@@ -152,18 +199,43 @@ def peak_cells(numbers: dict) -> tuple[str, str, str]:
     )
 
 
-def significant(largest: dict) -> bool:
-    """e > 1 counts: the largest mean above 1 beyond SIGNIFICANT errors after the look-elsewhere."""
-    z = largest.get("global", {}).get("z")
+def significant(numbers: dict) -> bool:
+    """e > 1 counts: the largest mean that the normals agree on is above 1
+    beyond SIGNIFICANT errors once the look-elsewhere is counted."""
+    largest = numbers.get("largest_robust")
+    if not largest:
+        return False
+    z = largest["global"]["z"]
     return z is not None and np.isfinite(z) and z > SIGNIFICANT
 
 
-def global_cells(largest: dict) -> str:
+def largest_cells(largest: dict | None) -> str:
+    """A largest mean's cells: e +- error | at, deg | (e - 1) / error."""
+    if not largest:
+        return "none | - | -"
+    return f"{pm(largest['e'], largest['error'])} | {largest['gamma_deg']:g} | {largest['z']:+.1f}"
+
+
+def robust_cell(largest: dict) -> str:
+    """Whether the normals agree at the largest mean, and by how much they differ."""
+    if largest["spread"] is None:
+        return "-"
+    verdict = "yes" if largest["robust"] else "no"
+    return f"{verdict} ({largest['spread']:.3f})"
+
+
+def global_cells(largest: dict | None) -> str:
     """The look-elsewhere test's cells: angles | global p | global z."""
+    if not largest:
+        return "- | - | -"
     g = largest["global"]
+    if largest["e"] <= 1.0:  # nothing above 1 to test
+        return f"{g['angles']} | - | -"
     if g["p"] is None or not np.isfinite(g["p"]):
         return f"{g['angles']} | - | -"
-    return f"{g['angles']} | {g['p']:.3f} | {g['z']:+.1f}"
+    if g.get("bound"):
+        return f"{g['angles']} | <= {g['p']:.2g} | >= {g['z']:+.1f}"
+    return f"{g['angles']} | {g['p']:.2g} | {g['z']:+.1f}"
 
 
 def grazing_section(numbers: dict, figure_dir: str) -> list[str]:
@@ -179,33 +251,54 @@ def grazing_section(numbers: dict, figure_dir: str) -> list[str]:
         "(e - 1) / error is compared with the largest standardised deviation of all the "
         "angles' means over resamples of whole seeds (the look-elsewhere effect: "
         f"{LOOK_ELSEWHERE_RESAMPLES} resamples), which gives its global p and the normal z of "
-        f"that p. e > 1 counts where that global z is above {SIGNIFICANT:g}.",
+        "that p. Where the normals' check has measured the study (analysis/normal_check.py: "
+        "does e stay within its seed error when measured at another normal?), the test takes "
+        "the largest mean that the normals agree on (its global p from the largest of all the "
+        "angles, which is conservative), and the table gives how far the normals differ at "
+        f"the largest mean. e > 1 counts where that global z is above {SIGNIFICANT:g}.",
         "",
         "| lattice | peak at tan gamma | (degrees) | peak e | largest mean e | at, deg | "
-        "(e - 1) / error | of how many angles | global p | global z | significant |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "(e - 1) / error | normals agree (their spread) | largest robust mean e | at, deg | "
+        "(e - 1) / error | of how many angles | global p | global z | e > 1 significant |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for name, n in numbers.items():
-        big = n["largest"]
+        big, kept = n["largest"], n["largest_robust"]
         where, degrees, height = peak_cells(n)
         lines.append(
-            f"| {name} | {where} | {degrees} | {height} | {pm(big['e'], big['error'])} | "
-            f"{big['gamma_deg']:g} | {big['z']:+.1f} | {global_cells(big)} | "
-            f"{'yes' if significant(big) else 'no'} |"
+            f"| {name} | {where} | {degrees} | {height} | {largest_cells(big)} | "
+            f"{robust_cell(big)} | {largest_cells(kept)} | {global_cells(kept)} | "
+            f"{'yes' if significant(n) else 'no'} |"
         )
+    checked = any("robust" in n for n in numbers.values())
+    if checked:
+        normals = next(n["normals"] for n in numbers.values() if "normals" in n)
+        lines += [
+            "",
+            "e is measured at the headline normal; the normals' check (analysis/normal_check.py; "
+            f"normals: {', '.join(normals)}) reports it only where the means at the normals "
+            "agree within its seed error, and withholds the verdict on e > 1 where they do not.",
+        ]
     lines += [
         "",
-        "e per angle, with the share of impacts whose e is above 1:",
+        "e per angle, with the share of impacts whose e is above 1"
+        + (" and the spread of the mean e over the normals:" if checked else ":"),
         "",
-        "| lattice | gamma, deg | tan gamma | impacts | e | share e > 1 |",
-        "|---|---|---|---|---|---|",
+        "| lattice | gamma, deg | tan gamma | impacts | e | share e > 1 |"
+        + (" normals' spread | robust |" if checked else ""),
+        "|---|---|---|---|---|---|" + ("---|---|" if checked else ""),
     ]
     for name, n in numbers.items():
-        for g, t, k, e, s, share in zip(
+        for j, (g, t, k, e, s, share) in enumerate(zip(
             n["gamma_deg"], n["tan_gamma"], n["impacts"], n["e"], n["e_error"],
             n["share_above_1"], strict=True,
-        ):  # fmt: skip
-            lines.append(f"| {name} | {g:g} | {t:.3g} | {k} | {pm(e, s)} | {share:.2f} |")
+        )):  # fmt: skip
+            line = f"| {name} | {g:g} | {t:.3g} | {k} | {pm(e, s)} | {share:.2f} |"
+            if "robust" in n:
+                line += f" {n['spread'][j]:.3f} | {'yes' if n['robust'][j] else 'withheld'} |"
+            elif checked:
+                line += " - | - |"
+            lines.append(line)
     lines += [
         "",
         f"![e against tan gamma]({figure_dir}/grazing_e.png)",
@@ -282,23 +375,29 @@ def readings_section(study: dict, readings: dict[str, tuple[dict, list[dict], li
         "wall's end as much as the impact.",
         "",
         "| reading | options that differ | impacts | failed | peak at tan gamma | (degrees) | "
-        "peak e | largest mean e | at, deg | (e - 1) / error | of how many angles | global p | "
-        "global z | significant | near a side |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "peak e | largest mean e | at, deg | (e - 1) / error | normals agree (their spread) | "
+        "largest robust mean e | at, deg | (e - 1) / error | of how many angles | global p | "
+        "global z | e > 1 significant | near a side |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
+    from .normal_check import robustness
+
     for name, (info, rows, failed) in readings.items():
-        for lattice, n in grazing_numbers(rows, resamples).items():
+        numbers = grazing_numbers(rows, resamples, robustness(rows, resamples))
+        for lattice, n in numbers.items():
             big = n["largest"]
             where, degrees, height = peak_cells(n)
             mine = [r for r in rows if r["study_lattice"] == lattice]
-            near = np.mean([float(r["side_clearance"]) < 1.0 for r in mine])
+            # a pair of disks has no wall, so no side to come near
+            sides = [float(r["side_clearance"]) for r in mine if r.get("side_clearance") != ""]
+            near = f"{np.mean([c < 1.0 for c in sides]):.0%}" if sides else "-"
             label = name if len(info["lattices"]) == 1 else f"{name} ({lattice})"
             lost = len(genuine(failed))
             stuck = f" (+{len(failed) - lost} on the wall at tmax)" if len(failed) > lost else ""
             lines.append(
                 f"| {label} | {reading_differences(study, info)} | {len(mine)} | {lost}{stuck} | "
-                f"{where} | {degrees} | {height} | {pm(big['e'], big['error'])} | "
-                f"{big['gamma_deg']:g} | {big['z']:+.1f} | {global_cells(big)} | "
-                f"{'yes' if significant(big) else 'no'} | {near:.0%} |"
+                f"{where} | {degrees} | {height} | {largest_cells(big)} | {robust_cell(big)} | "
+                f"{largest_cells(n['largest_robust'])} | {global_cells(n['largest_robust'])} | "
+                f"{'yes' if significant(n) else 'no'} | {near} |"
             )
     return lines + [""]

@@ -11,7 +11,7 @@ from pathlib import Path
 from builder.errors import InputError
 from builder.scene import MODEL_READINGS
 
-from . import binary_page, figures, grazing, speed, speed_page
+from . import binary_findings, binary_page, figures, grazing, normal_check, speed, speed_page
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
@@ -524,19 +524,36 @@ def render(
     shown_figures = figure_dir.relative_to(page.parent).as_posix()
     extra = {}
     if grazing.has_grazing_angles(rows):  # past the paper's 80.5 degrees
-        fits["grazing"] = rounded(grazing.grazing_numbers(rows, resamples))
+        check = normal_check.robustness(rows, resamples)
+        fits["grazing"] = rounded(grazing.grazing_numbers(rows, resamples, check))
         grazing.draw(fits["grazing"], figure_dir)
         extra["grazing"] = grazing.grazing_section(fits["grazing"], shown_figures)
         others = {name: read_tables(folder) for name, folder in (readings or {}).items()}
         extra["readings"] = grazing.readings_section(info, others, resamples)
     if info.get("target") == "disk":  # two disks: beside the same disks on the wall
-        walls = {name: read_tables(folder)[1] for name, folder in (readings or {}).items()}
+        loaded = {name: read_tables(folder) for name, folder in (readings or {}).items()}
+        walls = {n: tables[1] for n, tables in loaded.items() if tables[0].get("target") != "disk"}
+        pairs = {n: tables[1] for n, tables in loaded.items() if tables[0].get("target") == "disk"}
+        fits["normals"] = rounded(binary_page.normal_checks(rows, walls, pairs, resamples))
         fits["wall_comparison"] = rounded(
             {name: binary_page.comparison(rows, wall, resamples) for name, wall in walls.items()}
         )
         for name, numbers in fits["wall_comparison"].items():
             binary_page.draw(numbers, figure_dir, name)
-        extra["wall_comparison"] = binary_page.section(fits["wall_comparison"], shown_figures)
+        extra["wall_comparison"] = binary_page.section(
+            fits["wall_comparison"], shown_figures, fits["normals"]
+        )
+        extra["normals"] = normal_check.section(fits["normals"])
+        if grazing.has_grazing_angles(rows):  # the walls' e > 1 beside the pairs'
+            fits["wall_grazing"] = {}
+            for name, wall in walls.items():
+                paired = binary_page.paired_rows(rows, wall)[1]
+                fits["wall_grazing"][name] = rounded(
+                    grazing.grazing_numbers(
+                        paired, resamples, normal_check.robustness(paired, resamples)
+                    )
+                )
+        extra["findings"] = binary_findings.findings_section(fits, info)
     write_csv(means, out / "means.csv", MEAN_COLUMNS)
     (out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
     seconds = info["lammps_seconds"]

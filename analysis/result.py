@@ -10,7 +10,7 @@ from pathlib import Path
 
 from builder.scene import MODEL_READINGS
 
-from .binary import binary_energy_split, binary_rebound, momentum_change
+from .binary import binary_energy_split, binary_normals, binary_rebound, momentum_change
 from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
 from .series import read_energies, read_series
 
@@ -194,6 +194,10 @@ def binary_result(scene: dict, run: dict, series, energies) -> dict:
         "vy_out": rebound.vy_out,
         **run_provenance(run),
     }
+    aim = scene.get("aim", {})  # scenes built before the aim by the contact have none
+    result.update(binary_normals(series, masses, spec["radius"], aim.get("first_touch_time")))
+    result["aim_offset"] = aim.get("offset")
+    result["aim_incidence_deg"] = aim.get("first_touch_incidence_deg")
     result.update(momentum_change(series, masses, spec["radius"]))
     result.update(binary_energy_split(series, energies, masses))
     result["vibration_wall"] = result["vibration_target"]

@@ -327,8 +327,10 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
         "failures by cause",
     ]
     table = [table_row(r, "random", summaries[r]) for r in labels]
+    # the readings that lattice ran on: the best of the ranking when it ran,
+    # which the weights of the fits (analysis.fits.means) have moved since
     for lattice in then:
-        for reading in ranking[:then_best]:
+        for reading in ranking:
             these = [r for r in rows if r["reading"] == reading and r["study_lattice"] == lattice]
             if these:
                 table.append(table_row(reading, lattice, summarise(these)))
@@ -341,7 +343,8 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     draw(rows, figures / FIGURE)
     options = study["options"]
     then_text = "".join(
-        f"then the {lattice} disk on the {NUMBER_WORDS[then_best]} best readings"
+        f"then the {lattice} disk on the {NUMBER_WORDS[then_best]} best readings of the "
+        "ranking when it ran (each angle's fit weighted with a floor then, analysis/fits.py)"
         for lattice in then
     )
     return (

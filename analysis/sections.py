@@ -10,6 +10,7 @@ from collections import Counter
 # The sections a results page may have, in the order it has them
 # (analysis.report.results_page; a study file's `sections` picks some).
 SECTIONS = (
+    "findings",  # a binary study's (analysis.binary_findings)
     "earlier_runs",
     "statistics",
     "claims",
@@ -20,6 +21,7 @@ SECTIONS = (
     "grazing",
     "readings",
     "wall_comparison",  # a binary study's (analysis.binary_page)
+    "normals",  # a binary study's: e and beta at every normal (analysis.normal_check)
 )
 
 # What a run says when its disk never leaves the wall (decks/impact.lmp) or two

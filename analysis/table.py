@@ -72,6 +72,20 @@ BINARY_COLUMNS = (
     "n_target_points",
     "target_inertia_ratio",
     "n_disk_points",  # with the three before: each pair's two-body K (analysis.estimates)
+    # the other two normals (analysis.binary; e, beta, cot_gamma are the apse's)
+    "e_first_touch",
+    "beta_first_touch",
+    "cot_gamma_first_touch",
+    "normal_angle_deg_first_touch",
+    "e_impulse",
+    "beta_impulse",
+    "cot_gamma_impulse",
+    "normal_angle_deg_impulse",
+    "impulse_tilt_deg",
+    # the aim by the contact (builder/binary.py): the line's offset and the
+    # first touch's incidence the rings give
+    "aim_offset",
+    "aim_incidence_deg",
 )
 
 

@@ -57,6 +57,7 @@ def impact_rows(
     for seed in range(1, seeds + 1):
         offset = offset_sd * rng.standard_normal()
         for psi, gamma in zip(PSI, GAMMA_DEG):
+            beta = float(beta_of(psi) + offset + noise_sd * rng.standard_normal())
             row = {name: "" for name in COLUMNS}
             row.update(
                 study_lattice=lattice,
@@ -66,8 +67,9 @@ def impact_rows(
                 cot_gamma=float(psi),
                 vn=0.1,
                 e=float(e_of(psi)),
-                beta=float(beta_of(psi) + offset + noise_sd * rng.standard_normal()),
-                omega=0.0,
+                beta=beta,
+                omega=flat_wall_spin(0.1 / psi, beta, inertia_ratio),
+                vn_in_c=0.1,
                 contact_time=10.0,
                 touches=1,
                 vibration_disk=0.05,
@@ -86,6 +88,15 @@ def impact_rows(
             )
             rows.append(row)
     return rows
+
+
+def flat_wall_spin(v_t: float, beta: float, inertia_ratio: float) -> float:
+    """The spin after an impact on a flat wall (radius 1): the tangential
+    impulse J_t turns the disk by J_t R / I0, so the contact point's velocity
+    v_t' + w' = -beta v_t fixes w' (the impulse's normal is then the wall's,
+    analysis.normal_check)."""
+    v_out = v_t * (1.0 / inertia_ratio - beta) / (1.0 + 1.0 / inertia_ratio)
+    return (v_out - v_t) / inertia_ratio
 
 
 def write_tables(folder: Path, rows: list[dict], lattices: list[str], **study) -> Path:

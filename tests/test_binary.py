@@ -49,20 +49,41 @@ def test_the_scene_is_at_rest_in_the_centre_of_mass_and_its_rings_run_counter_cl
     assert np.all(in_disk[first - 1 :]) and not np.any(in_disk[: first - 1])
 
 
-def test_the_disks_start_a_gap_apart_on_the_line_through_first_touch():
-    """Rigid circles of radius R would first touch with their centres along +y:
-    the disk starts on the line through (0, 2 R) along the relative velocity,
-    its rough surface the cutoff and the start gap from the target's."""
-    from builder.binary import gap_between
+@pytest.mark.parametrize(
+    "lattice, gamma, vn", [("random", 45.0, 0.1), ("triangular", 80.5, 0.1), ("random", 76.0, 0.01)]
+)
+def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn):
+    """The disk starts the cutoff and the start gap from the target, and on
+    its line of motion the rings first come within the contact's stand-off
+    (checked here with the distance to the polylines, not the builder's rays)
+    where the line of centres makes the nominal angle with the relative
+    velocity; rigid circles of radius R would have been aimed short of it."""
+    from builder.binary import first_contact, gap_between
 
-    spec = SceneSpec(**BINARY)
+    spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": gamma, "vn": vn, "seed": 5})
     scene = build_scene(spec)
     ring_b, ring_a = rings(scene)
-    cutoff = scene.info["contact"]["cutoff"]
+    cutoff, aimed = scene.info["contact"]["cutoff"], scene.info["aim"]
     assert gap_between(ring_a, ring_b) == pytest.approx(cutoff * (1 + spec.start_gap), rel=1e-6)
-    direction = np.array([1.0, -1.0]) / np.sqrt(2)
-    off = scene.disk_centre - [0.0, 2.0]
-    assert abs(off[0] * direction[1] - off[1] * direction[0]) < 1e-9
+    # the stand-off: one point's contact energy is the approach's normal kinetic energy
+    m_a, m_b = scene.info["disk_mass"], scene.info["target_mass"]
+    energy = 0.5 * m_a * m_b / (m_a + m_b) * vn**2
+    v0, a = scene.info["contact"]["V0"], spec.contact_a
+    assert v0 * np.exp(-a * aimed["reach"]) == pytest.approx(energy, rel=1e-9)
+    relative = np.array(scene.info["initial_relative_velocity"])
+    u = relative / np.linalg.norm(relative)
+    own = ring_a - scene.disk_centre
+    travel = first_contact(own, ring_b, scene.disk_centre, u, aimed["reach"])
+    assert travel / np.linalg.norm(relative) == pytest.approx(aimed["first_touch_time"])
+    touch = scene.disk_centre + travel * u
+    assert gap_between(own + touch, ring_b) == pytest.approx(aimed["reach"], rel=1e-9)
+    path = np.linspace(0, travel, 50)[:-1]
+    assert min(gap_between(own + scene.disk_centre + s * u, ring_b) for s in path) > aimed["reach"]
+    across = np.array([-u[1], u[0]])
+    measured = np.degrees(np.arctan2(touch @ across, -(touch @ u)))
+    assert measured == pytest.approx(gamma, rel=0.01)
+    assert measured == pytest.approx(aimed["first_touch_incidence_deg"], abs=1e-9)
+    assert aimed["offset"] > aimed["rigid_offset"]
 
 
 def test_the_disk_is_the_wall_scenes_and_the_second_disk_another():

@@ -88,3 +88,75 @@ def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():
     assert two_body_k(alike) == pytest.approx(1.0 + 1.0 / 0.51, rel=1e-14)
     light = dict(alike, n_target_points=400, target_inertia_ratio=0.4)
     assert two_body_k(light) == pytest.approx(1.0 + (1 / 0.51 + 2 / 0.4) / 3.0, rel=1e-14)
+
+
+def test_the_same_friction_on_both_targets_is_the_same_mu():
+    """Both targets with the same beta(psi) and e: the paired difference of
+    Walton's mu is 0 (exactly, seed by seed), and the verdict is 'same'."""
+    wall = impact_rows("random", WALL_BETA, seeds=12, offset_sd=0.05, noise_sd=0.03)
+    numbers = comparison(binary(wall, 0.0), wall, resamples=20)
+    difference = numbers["mu_difference"]["random"]
+    assert difference["value"] == pytest.approx(0.0, abs=1e-9)
+    assert difference["sd"] < 1e-9
+    assert difference["verdict"] == "same"
+
+
+def test_a_grip_of_its_own_between_two_disks_differs_and_counts_its_systematic():
+    """Two disks whose beta lies 0.1 above the wall's on the sliding branch:
+    a positive mu difference; where the fits fail (chi2/dof > 2), the
+    combined error includes the spread over the fitting choices."""
+    wall = impact_rows("random", WALL_BETA, seeds=16, offset_sd=0.02, noise_sd=0.02)
+    disks = binary(wall, 0.0)
+    for r in disks:
+        psi = float(r["cot_gamma"])
+        r["beta"] = float(r["beta"]) + (0.1 if psi < 3.0 else 0.0)
+    d = comparison(disks, wall, resamples=20)["mu_difference"]["random"]
+    assert d["value"] > 0.0
+    expected = np.hypot(d["sd"], d["systematic"] if d["fits_fail"] else 0.0)
+    assert d["error"] == pytest.approx(expected)
+    assert d["verdict"] == verdict(d["value"], d["error"])
+
+
+def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
+    """Two disks whose measured cot gamma is half the wall's at every angle:
+    each target is fitted only at the angles inside the common range."""
+    from analysis.binary_page import common_range
+    from analysis.seeds import seed_tables
+
+    wall = impact_rows("random", WALL_BETA, seeds=6)
+    disks = binary(wall, 0.0)
+    for r in disks:
+        r["cot_gamma"] = 0.5 * float(r["cot_gamma"])
+    tables = seed_tables(disks + [{**r, "study_lattice": "wall"} for r in wall])
+    keep_disk, keep_wall, (low, high) = common_range(tables["random"], tables["wall"])
+    cot_disk, cot_wall = tables["random"].mean("cot_gamma"), tables["wall"].mean("cot_gamma")
+    assert low == pytest.approx(cot_wall.min()) and high == pytest.approx(cot_disk.max())
+    assert not keep_disk.all() and not keep_wall.all()
+    assert np.all((cot_disk[keep_disk] >= low) & (cot_disk[keep_disk] <= high))
+    assert np.all((cot_wall[keep_wall] >= low) & (cot_wall[keep_wall] <= high))
+
+
+def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
+    """The comparison's row shows e only where the normals' check finds it
+    robust on both targets; elsewhere 'withheld', and its verdict too."""
+    from analysis.binary_page import section
+
+    wall = impact_rows("random", WALL_BETA, seeds=8)
+    numbers = comparison(binary(wall, 0.0), wall, resamples=10)
+    gammas = numbers["lattices"]["random"]["gamma_deg"]
+    robust = [j != 2 for j in range(len(gammas))]
+    check = {
+        "normals": ["apse", "first_touch", "impulse"],
+        "lattices": {
+            "random": {
+                "gamma_deg": gammas,
+                "e_robust": robust,
+                "beta_robust": [True] * len(gammas),
+            }
+        },
+    }
+    lines = section({"w": numbers}, "figures", {"two disks (this study)": check})
+    rows = [x for x in lines if x.startswith("| ") and not x.startswith("| gamma")]
+    rows = [x for x in rows if x.split(" | ")[0].lstrip("| ").replace(".", "").isdigit()]
+    assert "withheld" in rows[2] and rows[2].count("withheld") == 3  # e disks, difference, verdict
+    assert all("withheld" not in x for j, x in enumerate(rows) if j != 2)

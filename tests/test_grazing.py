@@ -119,3 +119,38 @@ def test_one_angle_alone_needs_no_correction():
 
     found = look_elsewhere(independent_angles(1, 400, 2), 2.0)
     assert found["p"] == pytest.approx(norm.sf(2.0), abs=0.008)
+
+
+def test_e_above_one_counts_only_where_the_normals_agree():
+    """A peak of e at 1.3 where the normals disagree is withheld; the verdict
+    falls to the largest mean they agree on (1.0 here: not above 1)."""
+    from analysis.grazing import grazing_numbers, significant
+
+    def e_of(psi):
+        return 1.0 + 0.3 * np.exp(-(((1.0 / psi) - 4.0) ** 2))
+
+    rows = impact_rows("random", lambda psi: -0.5, e_of=e_of, seeds=20, noise_sd=0.01)
+    rng = np.random.default_rng(2)
+    for r in rows:
+        r["e"] = r["e"] + 0.01 * rng.standard_normal()
+    plain = grazing_numbers(rows, resamples=50)["random"]
+    assert significant(plain)  # without the check the peak counts
+    gammas = plain["gamma_deg"]
+    top = plain["largest"]["gamma_deg"]
+    near_top = [abs(np.tan(np.radians(g)) - 4.0) < 1.5 for g in gammas]
+    check = {
+        "normals": ["apse", "first_touch", "impulse"],
+        "lattices": {
+            "random": {
+                "gamma_deg": gammas,
+                "e_robust": [not n for n in near_top],
+                "e_spread": [0.5 if n else 0.0 for n in near_top],
+            }
+        },
+    }
+    checked = grazing_numbers(rows, resamples=50, check=check)["random"]
+    assert checked["largest"]["gamma_deg"] == top and not checked["largest"]["robust"]
+    kept = checked["largest_robust"]
+    assert kept["gamma_deg"] != top and kept["e"] < plain["largest"]["e"]
+    assert significant(checked) == (kept["global"]["z"] > 2.0)
+    assert not significant(checked)
