@@ -19,7 +19,9 @@ from runner.driver import job_groups
 from runner.study import Study
 from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario, stop_by_pid
 
+# SMALL's scene (tests/helpers.py): the 200-point disk on the 1,600-point wall, the paper's contact
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
+TINY += ["--n-wall", "1600", "--contact-scaling", "fixed"]
 COMPARED = (
     "study_lattice",
     "seed",
