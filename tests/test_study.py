@@ -17,7 +17,7 @@ import pytest
 
 from runner.driver import job_groups
 from runner.study import Study
-from tests.helpers import ROOT, RUNS, genuine_failures, run_crash_scenario, stop_by_pid
+from tests.helpers import ROOT, RUNS, SMALL, genuine_failures, run_crash_scenario, stop_by_pid
 
 # SMALL's scene (tests/helpers.py): the 200-point disk on the 1,600-point wall, the paper's contact
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
@@ -144,7 +144,7 @@ def test_run_study_takes_a_notebooks_client(uninterrupted):
 
     from runner.driver import run_study
 
-    done = Study("test_study_client", lattices=("random",), angles=3, samples=1, n_disk=200)
+    done = Study("test_study_client", lattices=("random",), angles=3, samples=1, **SMALL)
     with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=":0") as cluster:
         with Client(cluster) as client:
             counts = run_study(done, client=client)
