@@ -20,16 +20,9 @@ from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
 
-from .readings import Setup, page_text, read_record, read_rows
+from builder.study_names import KINDS, READINGS_KINDS  # noqa: F401 (plain data there)
 
-READINGS_KINDS = (
-    "scene_readings",
-    "model_readings",
-    "fact_sensitivity",
-    "wall_width",
-    "resolution",
-)
-KINDS = ("results", *READINGS_KINDS)
+from .readings import Setup, page_text, read_record, read_rows
 
 
 def kind_module(kind: str) -> ModuleType:

@@ -7,22 +7,7 @@ from __future__ import annotations
 import re
 from collections import Counter
 
-# The sections a results page may have, in the order it has them
-# (analysis.report.results_page; a study file's `sections` picks some).
-SECTIONS = (
-    "findings",  # a binary study's (analysis.binary_findings)
-    "earlier_runs",
-    "statistics",
-    "claims",
-    "fits",
-    "measures",
-    "nu",
-    "wall_ends",
-    "grazing",
-    "readings",
-    "wall_comparison",  # a binary study's (analysis.binary_page)
-    "normals",  # a binary study's: e and beta at every normal (analysis.normal_check)
-)
+from builder.study_names import SECTIONS  # noqa: F401 (plain data there)
 
 # What a run says when its disk never leaves the wall (decks/impact.lmp) or two
 # disks never part (decks/binary.lmp) by tmax: a physical outcome with no

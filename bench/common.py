@@ -12,7 +12,8 @@ from analysis.readings import markdown_table  # noqa: F401 (the benchmarks' tabl
 from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
 from builder.errors import InputError
-from runner.study import machine, runs_folder
+from runner.provenance import machine
+from runner.study import runs_folder
 
 ROOT = Path(__file__).resolve().parents[1]
 # Where a benchmark's page and tables go: its run folder, unless --docs asks

@@ -33,7 +33,8 @@ from builder.lammps_data import write_scene
 from builder.scene import ANGLE, SEED, build_scene
 from runner.impact import run_scene
 from runner.options import DT
-from runner.study import LATTICES, PRESETS
+from runner.studies import load_study
+from runner.study import LATTICES
 
 ENERGY_TOLERANCE = 5e-3  # make bench's criterion on rough scenes
 WORST = Range(1, 10_000, integer=True)
@@ -102,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as error:
         return refuse(__file__, error)
     worst = rows[: args.worst]
-    study = PRESETS["paper"]
+    study = load_study("paper")
     drift = np.zeros((len(worst), len(args.dts)))
     with tempfile.TemporaryDirectory() as tmp:
         for i, row in enumerate(worst):

@@ -45,7 +45,7 @@ from builder.checks import Range
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
 from runner.lammps_run import command_line, run_python
-from runner.study import PRESETS
+from runner.studies import load_study
 
 SOURCE = ROOT / "bench" / "loop_floor.c"
 BINARY = ROOT / "build" / "loop_floor"
@@ -101,7 +101,7 @@ def run_springs(folder: Path, dt: float, steps: int) -> tuple[float, np.ndarray]
 def run_impact_loop(folder: Path) -> tuple[float, int]:
     """The impact deck's main run as the study runs it: loop seconds, steps."""
     variables = {"scene": str(folder), "out": str(folder),
-                 **PRESETS["paper"].options.deck_variables()}  # fmt: skip
+                 **load_study("paper").options.deck_variables()}  # fmt: skip
     log = folder / "log.lammps"
     run_python(variables, log)
     text = log.read_text()
@@ -126,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
     folder = RUNS / "loop_floor"
     spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
     write_scene(build_scene(spec), folder)
-    dt = PRESETS["paper"].options.dt
+    dt = load_study("paper").options.dt
     compile_floor()
     rates: dict[str, list[float]] = {"floor": [], "springs": [], "impact": []}
     ratios: dict[str, list[float]] = {"springs": [], "impact": []}

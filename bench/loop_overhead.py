@@ -53,7 +53,7 @@ from builder.scene import SceneSpec, build_scene
 from runner.impact import run_scene
 from runner.lammps_run import command_line
 from runner.options import DT, NRESPA
-from runner.study import PRESETS
+from runner.studies import load_study
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
 SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
@@ -80,7 +80,7 @@ def variants(
     folder: Path, steps: int, splits: list[tuple[float, int]], old_setup: Path, before: str
 ) -> dict[str, tuple[Path, dict[str, str]]]:
     """Each variant's deck and variables."""
-    options = PRESETS["paper"].options
+    options = load_study("paper").options
     common = {"scene": str(folder), "out": str(folder), **options.deck_variables(), "post": "yes"}
     bench = {
         "scene": str(folder),
@@ -199,9 +199,9 @@ def main(argv: list[str] | None = None) -> int:
     spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
     scene = build_scene(spec)
     with tempfile.TemporaryDirectory() as tmp:
-        folder = write_scene(scene, Path(tmp) / "scene", PRESETS["paper"].options.springs)
+        folder = write_scene(scene, Path(tmp) / "scene", load_study("paper").options.springs)
         # the impact's own number of steps, which every variant then runs
-        steps = run_scene(folder, PRESETS["paper"].options)["steps"]
+        steps = run_scene(folder, load_study("paper").options)["steps"]
         old_setup = Path(tmp) / "setup_before.lmp"
         old_setup.write_text(file_at(args.before, "decks/setup.lmp"))
         splits = args.respa if args.respa is not None else [respa_split(t) for t in RESPA_SPLITS]
@@ -251,7 +251,7 @@ def main(argv: list[str] | None = None) -> int:
         f"Scene: random disk, seed {args.seed}, gamma {args.gamma:g} degrees, wall "
         f"{spec.n_wall} points, ka x {spec.wall_ka}, {spec.wall_fixed} held: "
         f"{info['n_atoms']} atoms, {info['n_springs']} springs; {steps} steps (the impact's), "
-        f"springs `{PRESETS['paper'].options.springs}`, dt {PRESETS['paper'].options.dt}. "
+        f"springs `{load_study('paper').options.springs}`, dt {load_study('paper').options.dt}. "
         f"Medians of {args.repeats} interleaved runs, one LAMMPS instance each; the machine "
         "is shared, so single runs vary by 20 % and more. "
         "**steps/s** over the whole input (read_data, set-up, loop, the work between "

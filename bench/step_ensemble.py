@@ -27,7 +27,8 @@ from builder.errors import InputError
 from runner.clusters import WORKERS
 from runner.driver import run_study
 from runner.options import DT, INTEGRATORS, NRESPA
-from runner.study import COT_GAMMA, PRESETS, SAMPLES, Study
+from runner.studies import load_study
+from runner.study import COT_GAMMA, SAMPLES, Study
 
 ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, the branch's top, sliding
 PASS = 2.0  # standard errors
@@ -35,7 +36,7 @@ PASS = 2.0  # standard errors
 
 def parser():
     parser = bench_parser(__file__, __doc__)
-    defaults = PRESETS["paper"].options
+    defaults = load_study("paper").options
     parser.add_argument(
         "--samples", type=SAMPLES, default=100, help=f"seeds, {SAMPLES.describe()} (default: 100)"
     )
@@ -68,7 +69,7 @@ def parser():
 
 
 def study(name: str, samples: int, cot_gamma: tuple[float, ...], **options) -> Study:
-    base = PRESETS["paper"]
+    base = load_study("paper")
     return replace(
         base,
         name=name,

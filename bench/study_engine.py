@@ -35,7 +35,8 @@ from bench.common import ROOT, add_repeats, bench_parser, markdown_table, median
 from builder.checks import Range
 from runner.clusters import ClusterSpec, dask_client
 from runner.driver import job_groups
-from runner.study import ANGLES, PRESETS, SAMPLES, runs_folder
+from runner.studies import load_study
+from runner.study import ANGLES, SAMPLES, runs_folder
 
 TASKS = Range(100, 1_000_000, integer=True)
 # The partitions path's builder (issue 28, measured on this machine): 40 ms
@@ -168,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     driver = median([r["clock"]["driver_cpu_seconds"] / r["impacts"] for r in ours])
     per_impact = median([sum(r["clock"]["worker_seconds"].values()) / r["impacts"] for r in ours])
-    lattices = PRESETS[args.preset].lattices
+    lattices = load_study(args.preset).lattices
     synthetic = [{"seed": s, "lattice": la, "folder": f"{la}/{s}/{g}"} for s in range(args.samples)
                  for la in lattices for g in range(args.angles)]  # fmt: skip
     groups = len(synthetic) // len(job_groups(synthetic, os.cpu_count() or 1))
@@ -183,7 +184,7 @@ def main(argv: list[str] | None = None) -> int:
         projection.append([str(n), f"{efficiency:.2f}",
                            f"{partitions[0]:.2f} to {partitions[1]:.2f}"])  # fmt: skip
     body = (
-        f"The {args.preset} preset's lattices ({', '.join(PRESETS[args.preset].lattices)}), "
+        f"The {args.preset} preset's lattices ({', '.join(load_study(args.preset).lattices)}), "
         f"{args.samples} samples x {args.angles} angles ({impacts} "
         f"impacts), default settings, 2 local workers each way (the machine's cores), on a "
         f"Poisson cache warmed by one run before; medians of {args.repeats} interleaved runs. "

@@ -11,7 +11,9 @@ import time
 from dataclasses import replace
 
 from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
-from .study import BODIES_FOLDER, Study, state
+from .folders import state
+from .sample_bodies import BODIES_FOLDER
+from .study import Study
 from .tasks import WORKER_PHASES, group_task
 
 PROGRESS_EVERY = 10.0  # seconds between progress lines

@@ -24,13 +24,41 @@ from analysis.sections import impact_state
 from builder.checks import require_out_folder
 from builder.errors import InputError
 
-from .study import ROOT, check_environment, check_source, machine, runs_folder
+from .provenance import machine
+from .study import ROOT, runs_folder
+from .study_args import check_environment, check_source
 from .study_file import StudyFile, axis_studies, combinations
 
 # runner study's options that a readings study takes (its file says the rest).
-TAKES = ("preset", "command", "docs", "cluster", "workers", "scheduler", "retry_failed")
+TAKES = ("preset", "described", "command", "docs", "cluster", "workers", "scheduler")
+TAKES += ("retry_failed",)
 TAKES += ("jobs", "cores_per_job", "walltime", "queue", "account", "memory")
 TAKES += ("partitions", "batch_size")
+
+
+def check_labels(described: StudyFile) -> None:
+    """Refuse a readings study whose page could not name each combination
+    (its kind's ``label`` needs an option the file gives no axis, or reads
+    two combinations alike); checked where the page's module is at hand,
+    before any work.
+
+    Raises
+    ------
+    builder.errors.InputError
+        One line naming the file and the kind.
+    """
+    path, kind = described.path, described.kind
+    labels = []
+    for choice in combinations(described.axes, described.sweep):
+        try:
+            labels.append(kind_module(kind).label(choice))
+        except KeyError as missing:
+            raise InputError(
+                f"{path}: kind {kind} compares readings by {missing.args[0]}: give it a "
+                f"list of values (an axis)"
+            ) from None
+    if len(set(labels)) != len(labels):
+        raise InputError(f"{path}: kind {kind}: two combinations read alike ({labels})")
 
 
 def setup_of(name: str, described: StudyFile) -> Setup:
@@ -72,6 +100,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     from .driver import run_study
 
     refuse_options(args)
+    check_labels(described)
     name = args.preset
     if args.docs and not described.page:
         raise InputError(f"--docs: the {name} study has no page in docs/ (its file's page)")
@@ -141,6 +170,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
 def remake_page(name: str, described: StudyFile, out: Path | None = None) -> Path:
     """The page of a readings study again from its committed table in
     docs/<page>/, into docs/ (or ``out``)."""
+    check_labels(described)
     tables = ROOT / "docs" / described.page
     if not (tables / ROWS).is_file():
         raise InputError(f"{name}: {tables} holds no table (rows.csv): run the study with --docs")

@@ -55,14 +55,14 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
-from analysis.kinds import KINDS, READINGS_KINDS, kind_module
-from analysis.readings import NAMED
-from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
+from builder.study_names import KINDS, NAMED, READINGS_KINDS
+from builder.study_names import SECTIONS as PAGE_SECTIONS
 
 from .options import RANKS, RunOptions, on_ranks
+from .study import Study
 from .values import VALUES
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
@@ -103,7 +103,7 @@ class StudyFile:
     its axes (option -> values) and the readings its page tabulates (names
     of docs/ folders holding the same study's tables under other options)."""
 
-    study: object  # runner.study.Study
+    study: Study
     page: str = ""
     axes: dict = field(default_factory=dict)
     readings: tuple[str, ...] = ()
@@ -138,8 +138,6 @@ def read_study_file(path: Path) -> StudyFile:
         One line naming the file and the key, for a key that is not an
         option, a value of the wrong kind, or a file that is not TOML.
     """
-    from .study import Study
-
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except UnicodeDecodeError as error:
@@ -269,18 +267,6 @@ def read_study_file(path: Path) -> StudyFile:
             f"{path}: [rerun] samples must be more than [grid] samples ({study.samples}), "
             f"got {rerun['samples']}"
         )
-    if kind in READINGS_KINDS:  # its page names each combination by some of its options
-        labels = []
-        for choice in combinations(axes, sweep):
-            try:
-                labels.append(kind_module(kind).label(choice))
-            except KeyError as missing:
-                raise InputError(
-                    f"{path}: kind {kind} compares readings by {missing.args[0]}: give it a "
-                    f"list of values (an axis)"
-                ) from None
-        if len(set(labels)) != len(labels):
-            raise InputError(f"{path}: kind {kind}: two combinations read alike ({labels})")
     return StudyFile(
         study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named, path
     )
@@ -371,8 +357,6 @@ def study_file_text(described: StudyFile) -> str:
     """A study file that reads back as ``described`` (its options that differ
     from the defaults, each axis's values, the page and its readings)."""
     study, page, axes = described.study, described.page, described.axes
-    from .study import Study
-
     default, run_default = Study(study.name), RunOptions(route="python")
     lines = [f"page = {toml_value(page)}"] if page else []
     if described.readings:

@@ -33,7 +33,8 @@ from builder.errors import InputError
 from builder.scene import ANGLE
 
 from .impact import ROOT, run_impact
-from .study import Study, machine, runs_folder
+from .provenance import machine
+from .study import Study, runs_folder
 
 DUMP_EVERY = Range(1, 10_000, integer=True)
 

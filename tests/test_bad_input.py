@@ -232,7 +232,12 @@ def no_work(monkeypatch, module) -> None:
         sys.modules[name]
         for name in (
             "runner.impact",
+            "runner.cli",
             "runner.study",
+            "runner.study_args",
+            "runner.study_cli",
+            "runner.study_outputs",
+            "runner.readings_study",
             "runner.driver",
             "runner.clusters",
             "runner.lammps_run",

@@ -61,7 +61,7 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
     tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
     the same page, but for where it says its files are."""
     from analysis.report import report_from_tables
-    from runner.study import PAGE_SECTIONS, READINGS
+    from runner.studies import study_file
 
     docs = ROOT / "docs"
     page = tmp_path / "binary_grazing.md"
@@ -70,8 +70,8 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
         page,
         preset="binary_grazing",
         out=tmp_path / "tables",
-        readings={name: docs / name for name in READINGS["binary_grazing"]},
-        sections=PAGE_SECTIONS["binary_grazing"],
+        readings={name: docs / name for name in study_file("binary_grazing").readings},
+        sections=study_file("binary_grazing").sections,
     )
     made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
     assert made == (docs / "binary_grazing.md").read_text()

@@ -16,7 +16,8 @@ import pytest
 from builder.lammps_data import data_file_text
 from builder.materials import calibrated
 from builder.scene import DISK, SceneSpec, build_scene, wall_spring_constant
-from runner.study import LATTICES, PRESETS, Study
+from runner.studies import load_study
+from runner.study import LATTICES, Study
 
 
 def section(text: str, header: str) -> list[str]:
@@ -54,7 +55,7 @@ def scenes(study: Study, seed: int, gamma: float) -> dict:
 @pytest.mark.parametrize(
     "study, seed, gamma",
     [
-        (PRESETS["paper"], 7, 45.0),  # the default study; seed 7 of issue 23
+        (load_study("paper"), 7, 45.0),  # the default study; seed 7 of issue 23
         # other readings of the wall, small disks to save time
         (Study("t", n_disk=200, n_wall=800, wall_ka=10.0, wall_fixed="sides"), 3, 20.0),
         (Study("t", n_disk=200, n_wall=1600, wall_ka="same-c"), 5, 70.0),
@@ -97,9 +98,9 @@ def test_the_wall_ka_is_the_random_disk_s_whatever_the_disk():
 def test_a_result_on_another_wall_is_set_aside_and_runs_again(tmp_path):
     """A study resumed after the change must not mix the old walls' results
     (the triangular and square disks' walls of before) with the common wall's."""
-    from runner.study import OTHER_WALL, set_aside_if_other_wall, state
+    from runner.folders import OTHER_WALL, set_aside_if_other_wall, state
 
-    study = PRESETS["paper"]
+    study = load_study("paper")
     job = {"lattice": "square_nu0.3", "seed": 7, "gamma": 45.0, "folder": str(tmp_path / "a")}
     same = {**job, "folder": str(tmp_path / "b")}
     ka_wall = wall_spring_constant(study.spec(job))[0]

@@ -18,7 +18,8 @@ from builder.errors import InputError
 from builder.materials import square_ratio_for_poisson
 from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec, build_scene
 from runner.__main__ import main as runner_main
-from runner.study import PRESETS, Study
+from runner.studies import load_study
+from runner.study import Study
 
 DELTA = 0.03
 
@@ -197,7 +198,7 @@ def test_a_study_gives_each_lattice_the_readings_that_apply():
     assert (random.surface_row, random.regular_surface) == ("random", "band")
     assert (triangular.surface_row, triangular.regular_surface) == ("even", "lattice")
     assert random.contact_mass == triangular.contact_mass == "disk"
-    assert PRESETS["paper"].spec({"lattice": "random", "seed": 1, "gamma": 30.0}) == SceneSpec(
+    assert load_study("paper").spec({"lattice": "random", "seed": 1, "gamma": 30.0}) == SceneSpec(
         seed=1, gamma_deg=30.0
     )
 

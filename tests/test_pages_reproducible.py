@@ -8,15 +8,14 @@ import subprocess
 
 import pytest
 
-from runner.study import DOC_PAGES, STUDY_FILES
+from runner.studies import built_in_pages
 from tests.helpers import ROOT
 
 DOCS = ROOT / "docs"
 WITH_TABLES = [
     name
-    for name, page in DOC_PAGES.items()
-    if STUDY_FILES[name].built_in
-    and ((DOCS / page / "study.json").is_file() or (DOCS / page / "rows.csv").is_file())
+    for name, page in built_in_pages()[0].items()
+    if ((DOCS / page / "study.json").is_file() or (DOCS / page / "rows.csv").is_file())
 ]
 
 

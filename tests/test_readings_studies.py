@@ -17,7 +17,7 @@ from analysis.readings import MODELS, WALLS, distance_from_text, named_reading, 
 from builder.scene import FIRST_READING, SceneSpec
 from runner.options import RunOptions
 from runner.readings_study import setup_of
-from runner.study import STUDY_FILES
+from runner.studies import study_file
 from runner.study_file import axis_studies, read_study_file
 from tests.helpers import ROOT, RUNS
 
@@ -30,7 +30,7 @@ def rows_of(name: str) -> list[dict]:
 
 
 def studies_of(name: str) -> list:
-    described = STUDY_FILES[name]
+    described = study_file(name)
     return axis_studies(described.study, described.axes, name, described.sweep)
 
 
@@ -47,7 +47,7 @@ def test_the_scene_readings_file_is_the_study_of_its_table():
     """Every wall of points x ka x held on the random disk at the model's first
     reading, 8 angles, 12 seeds, the five best to 30, the triangular disk on
     three; the run settings of the time."""
-    described = STUDY_FILES["scene_readings"]
+    described = study_file("scene_readings")
     subs = studies_of("scene_readings")
     held = ("sides", "sides+bottom")
     walls = list(itertools.product((800, 1600, "density"), (1.0, 10.0, "same-c"), held))
@@ -77,7 +77,7 @@ def test_the_model_readings_file_is_the_study_of_its_table():
     """Five walls x seven readings of the model (relative to the first
     reading), random and triangular disks, 8 angles, 12 seeds, the five best
     and the default of the time to 30."""
-    described = STUDY_FILES["model_readings"]
+    described = study_file("model_readings")
     subs = studies_of("model_readings")
     assert len(subs) == 35
     setup = setup_of("model_readings", described)
@@ -106,7 +106,7 @@ def test_the_model_readings_file_is_the_study_of_its_table():
 def test_the_fact_sensitivity_file_is_the_study_of_its_table():
     """The random disk on the default scene's reading, v_n and roughness one
     at a time around (0.1, 0.03): five studies, not the nine of a cross."""
-    described = STUDY_FILES["fact_sensitivity"]
+    described = study_file("fact_sensitivity")
     assert described.sweep == "one-at-a-time"
     subs = studies_of("fact_sensitivity")
     points = [(s.vn, s.roughness) for s in subs]
@@ -182,7 +182,7 @@ def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
 def test_the_default_scene_is_the_pick_of_the_committed_model_readings():
     """The rule's pick from the committed rows, every seed of each reading (the
     page's), is today's default reading."""
-    setup = setup_of("model_readings", STUDY_FILES["model_readings"])
+    setup = setup_of("model_readings", study_file("model_readings"))
     summaries = model_readings.summaries_of(rows_of("model_readings"), setup)
     pick = model_readings.rank_summaries(summaries)[0]
     assert pick == model_readings.label(model_readings.current_default())

@@ -480,7 +480,6 @@ def remove_before(case: Case) -> None:
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.id)
 def test_refused_before_any_work(case, places, clean_tree, tmp_path, monkeypatch, capsys):
-    import runner.study
 
     fill = {**places, "tmp": str(tmp_path), "name": case.name}
     for name, text in case.files.items():
@@ -509,9 +508,6 @@ def test_refused_before_any_work(case, places, clean_tree, tmp_path, monkeypatch
                 monkeypatch.setenv(key, value)
             monkeypatch.chdir(ROOT)
             monkeypatch.setattr("runner.clusters.JOIN_SECONDS", 3)
-            for registry in ("PRESETS", "DOC_PAGES", "AXES", "READINGS", "PAGE_SECTIONS",
-                             "STUDY_FILES"):  # fmt: skip
-                monkeypatch.setattr(runner.study, registry, dict(getattr(runner.study, registry)))
             module = importlib.import_module(case.module)
             if "scheduler" in case.id:  # joining comes first: the sweep must not
                 monkeypatch.setattr("runner.driver.drive", refuse_work)

@@ -14,7 +14,7 @@ from builder.scene import DISK, SceneSpec, build_scene, placement_quantum
 from runner.impact import run_scene
 from runner.lammps_run import data_to_restart
 from runner.options import RunOptions
-from runner.study import BODIES_FOLDER, SampleBodies
+from runner.sample_bodies import BODIES_FOLDER, SampleBodies
 from tests.helpers import SMALL, SMALL_DISK
 
 

@@ -74,10 +74,11 @@ def test_the_default_scene_is_the_chosen_reading():
     spec = SceneSpec()
     chosen = (1600, 10.0, "sides", "disk")
     assert (spec.n_wall, spec.wall_ka, spec.wall_fixed, spec.contact_mass) == chosen
-    from runner.study import PRESETS, STUDY_FILES
+    from runner.studies import all_studies
 
-    for name, study in PRESETS.items():
-        if STUDY_FILES[name].kind != "results":
+    for described in all_studies().values():
+        study = described.study
+        if described.kind != "results":
             continue
         n_wall = (
             2 * study.n_disk if study.n_wall is None else study.n_wall

@@ -12,7 +12,8 @@ import pytest
 from analysis.speed import power_law, power_law_range
 from builder.errors import InputError
 from builder.scene import SceneSpec
-from runner.study import LATTICES, PRESETS, Study
+from runner.studies import load_study
+from runner.study import LATTICES, Study
 from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables
 
@@ -72,7 +73,7 @@ def test_bad_speeds_are_refused(speeds, words):
 
 
 def test_the_speed_preset_grid():
-    study = PRESETS["speed"]
+    study = load_study("speed")
     speeds = np.array(study.velocities())
     assert speeds[0] == 0.01 and speeds[-1] >= 0.3
     ratios = speeds[1:] / speeds[:-1]
@@ -85,7 +86,7 @@ def test_the_speed_preset_grid():
 
 
 def test_the_grazing_preset_grid():
-    study = PRESETS["grazing"]
+    study = load_study("grazing")
     gammas = np.array(study.gammas())
     assert gammas.max() >= 85.0 and study.samples >= 30
     assert np.all(np.diff(gammas[gammas >= 60]) <= np.diff(gammas[gammas < 60]).min())

@@ -543,11 +543,11 @@ def test_a_result_with_nan_is_not_a_result(uninterrupted):
 def test_a_missing_plugin_stops_the_study_before_any_impact(monkeypatch, capsys):
     """An environment fault is no impact's failure: one line naming the file
     and the make target, exit 1, no impact folder."""
-    import runner.study
+    import runner.study_args
     from runner.__main__ import main
 
     monkeypatch.setitem(
-        runner.study.STYLE_LIBRARIES, ("pair", "polyline/exp"), ("libmissing.so", "register")
+        runner.study_args.STYLE_LIBRARIES, ("pair", "polyline/exp"), ("libmissing.so", "register")
     )
     name = "test_study_no_plugin"
     status = main(["study", "demo", "--name", name, *TINY])

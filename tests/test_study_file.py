@@ -11,7 +11,8 @@ import pytest
 
 from builder.errors import InputError
 from runner.options import RunOptions
-from runner.study import DOC_PAGES, PRESETS, Study
+from runner.studies import built_in_pages, load_study
+from runner.study import Study
 from runner.study_file import STUDIES, read_study_file, study_file_text, study_path
 from tests.helpers import ROOT, RUNS
 
@@ -27,9 +28,10 @@ def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
 
 def test_the_papers_grid():
     """MODEL.md section 7: four lattices, 16 angles, 100 samples at 0.1 c."""
-    paper = PRESETS["paper"]
+    paper = load_study("paper")
     assert len(paper.jobs()) == 4 * 16 * 100 and paper.vn == 0.1
-    assert DOC_PAGES["paper"] == "results" and "demo" not in DOC_PAGES
+    pages = built_in_pages()[0]
+    assert pages["paper"] == "results" and "demo" not in pages
 
 
 def test_angles_in_degrees_are_cot_gamma_to_six_decimals(tmp_path):
@@ -195,18 +197,14 @@ def test_the_command_takes_a_file_and_refuses_a_bad_one_in_one_line(tmp_path):
 
 def test_command_line_options_override_the_file(tmp_path, monkeypatch):
     from runner.__main__ import parser
-    from runner.study import study_from_args
-
-    # the command registers the file's study among the presets: this test's only
-    monkeypatch.setattr("runner.study.PRESETS", dict(PRESETS))
-    monkeypatch.setattr("runner.study.DOC_PAGES", dict(DOC_PAGES))
+    from runner.study_args import study_from_args
 
     mine = tmp_path / "mine.toml"
     mine.write_text(
         '[grid]\nlattices = ["random"]\nsamples = 5\nangles = 4\n[scene]\nwall_ka = 1.0\n'
     )
     args = parser().parse_args(["study", str(mine), "--samples", "2", "--name", "mine_probe"])
-    study = study_from_args(args)
+    study = study_from_args(args, args.preset.study)
     assert (study.samples, study.angles, study.wall_ka) == (2, 4, 1.0)
     assert replace(study, name="mine", samples=5) == read_study_file(mine).study
 

@@ -1,0 +1,84 @@
+"""Names a study file may give, as plain data: the readings of the scene by
+name (MODEL.md section 8), the kinds of page and the sections of a results
+page. Reading a study file (runner.study_file) checks its names against
+these without importing what makes the pages (analysis.kinds,
+analysis.sections, analysis.readings use them from here).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+from .scene import FIRST_READING
+
+# The kinds of page a study file may ask for (its ``kind``): ``results`` (the
+# default), or a readings study's page made from its table (analysis.kinds).
+READINGS_KINDS = (
+    "scene_readings",
+    "model_readings",
+    "fact_sensitivity",
+    "wall_width",
+    "resolution",
+)
+KINDS = ("results", *READINGS_KINDS)
+# The sections a results page may have, in the order it has them
+# (analysis.report.results_page; a study file's `sections` picks some).
+SECTIONS = (
+    "findings",  # a binary study's (analysis.binary_findings)
+    "earlier_runs",
+    "statistics",
+    "claims",
+    "fits",
+    "measures",
+    "nu",
+    "wall_ends",
+    "grazing",
+    "readings",
+    "wall_comparison",  # a binary study's (analysis.binary_page)
+    "normals",  # a binary study's: e and beta at every normal (analysis.normal_check)
+)
+
+N_WALL = (800, 1600, "density")
+WALL_KA = (1.0, 10.0, "same-c")
+WALL_FIXED = ("sides", "sides+bottom")
+
+
+def wall_label(n_wall, wall_ka, wall_fixed: str) -> str:
+    """A wall as the pages name it: ``points_ka_held`` (``800_1ka_sides``)."""
+    ka = wall_ka if isinstance(wall_ka, str) else f"{wall_ka:g}ka"
+    return f"{n_wall}_{ka}_{wall_fixed.replace('+', '-')}"
+
+
+# Every reading of the wall, in the order of the scene readings' table.
+WALLS = {
+    wall_label(*w): dict(zip(("n_wall", "wall_ka", "wall_fixed"), w))
+    for w in itertools.product(N_WALL, WALL_KA, WALL_FIXED)
+}
+# The readings of the model: the first reading, one choice changed at a time,
+# and the pair the issue's trials point at (the disk's mass moved mu most; a
+# regular disk with its own surface is the construction that could make it slip).
+MODEL_CHANGES = {
+    "first-read": {},
+    "disk-mass": {"contact_mass": "disk"},
+    "spring-speed": {"speed_unit": "spring"},
+    "both-directions": {"roughness_direction": "both"},
+    "random-row": {"surface_row": "random"},
+    "lattice-surface": {"regular_surface": "lattice"},
+    "disk-mass+lattice-surface": {"contact_mass": "disk", "regular_surface": "lattice"},
+}
+# Relative to the first reading, not to today's default.
+MODELS = {name: {**FIRST_READING, **change} for name, change in MODEL_CHANGES.items()}
+# How the model is carried to finer disks (docs/model.md, "The model as the
+# resolution grows"): the roughness's correlation length (0.048 R: the rms
+# slope, roughness / length, of independent draws 2 pi / 93 R apart, the
+# 800-point disk's surface spacing, sqrt(2) roughness / spacing) and the
+# contact's scaling; "continuum" changes neither with the spacing, the other
+# two take the paper's per-point reading of one of them.
+ROUGHNESS_LENGTH = 0.048
+LIMITS = {
+    "continuum": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "spacing"},
+    "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
+    "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
+}
+# The named readings a study file's [scene] may give, by key.
+NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS}
