@@ -166,6 +166,7 @@ def binary_result(scene: dict, run: dict, series, energies) -> dict:
         "partner_lattice": spec.get("partner_lattice") or spec["lattice"],
         "seed": spec["seed"],
         "partner_seed": spec.get("partner_seed"),
+        "partner": spec.get("partner", "independent"),
         "gamma_deg": spec["gamma_deg"],
         "cot_gamma": rebound.cot_gamma,
         "cot_gamma_nominal": scene["cot_gamma"],

@@ -66,9 +66,22 @@ TYPE_NAMES = {
 }
 
 
-def partner_body(spec: SceneSpec) -> Body:
+def partner_body(spec: SceneSpec, disk: Body) -> Body:
     """The second disk: its own stream of the sample's seed, or the disk of
-    sample ``partner_seed``; the disk's lattice unless ``partner_lattice``."""
+    sample ``partner_seed``; the disk's lattice unless ``partner_lattice``.
+
+    With ``partner`` "image" it is ``disk`` turned by 180 degrees about its
+    centre: placed at the origin with the disk at c, it is the disk's point
+    image through c / 2, and with equal and opposite velocities that point
+    stays put. The collision is then symmetric (a rotation by 180 degrees
+    about it maps each disk onto the other): each meets the other's surface
+    exactly as the other meets its own, the symmetric two-body reference.
+    (A mirror image in a line would be symmetric only without tangential
+    motion: reflecting the disk in the midplane also reflects its velocity.)
+    The turn keeps the ring counter-clockwise and every spring's length.
+    """
+    if spec.partner == "image":
+        return replace(disk, points=-disk.points)
     lattice = spec.partner_lattice or spec.lattice
     readings = (
         spec.roughness_direction,
@@ -264,7 +277,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     """
     R = spec.radius
     disk = sample_disk(spec)
-    target = partner_body(spec)
+    target = partner_body(spec, disk)
     partner_lattice = spec.partner_lattice or spec.lattice
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
     ka_target, target_material = spring_constant(

@@ -102,9 +102,43 @@ def test_partner_seed_takes_that_samples_disk():
     assert np.array_equal(paired.frame_positions[paired.molecule != DISK], disk_7)
 
 
+def test_the_image_partner_is_the_disks_point_image_through_the_midpoint():
+    scene = build_scene(SceneSpec(**{**BINARY, "seed": 4, "partner": "image", "gamma_deg": 60.0}))
+    disk = scene.positions[scene.molecule == DISK]
+    target = scene.positions[scene.molecule != DISK]
+    # the target's ring first, then its interior; the disk's likewise: the
+    # same order, so each target point is its disk point's image through c / 2
+    assert np.array_equal(target, scene.disk_centre - disk)
+    velocities = scene.velocities
+    assert np.array_equal(velocities[scene.molecule != DISK], -velocities[scene.molecule == DISK])
+
+
+def test_the_image_partners_collision_is_symmetric(tmp_path):
+    """Turned by 180 degrees about the midpoint, the scene is itself: both
+    disks end with the same spin and vibration, and opposite momenta."""
+    spec = SceneSpec(**{**BINARY, "seed": 3, "partner": "image", "gamma_deg": 50.0})
+    result = run_impact(spec, tmp_path / "image", RunOptions())
+    assert result["touches"] >= 1
+    series = np.loadtxt(tmp_path / "image" / "series.dat")
+    columns = {name: k for k, name in enumerate(BINARY_COLUMNS)}
+    end = series[-1]
+    # summation order differs between the two disks' points: round-off only
+    for own, other, sign in (("omega_z", "tomega_z", 1), ("vx", "tvx", -1), ("vy", "tvy", -1)):
+        assert end[columns[own]] == pytest.approx(sign * end[columns[other]], rel=1e-9, abs=1e-12)
+    assert result["vibration_disk"] == pytest.approx(result["vibration_target"], rel=1e-9)
+    # a binary pair of independent disks is not symmetric: the check can fail
+    other = run_impact(
+        dataclasses.replace(spec, partner="independent"), tmp_path / "pair", RunOptions()
+    )
+    assert abs(other["vibration_disk"] / other["vibration_target"] - 1) > 1e-3
+
+
 @pytest.mark.parametrize(
     "changes, words",
     [
+        (dict(partner="mirror"), "partner must be one of"),
+        (dict(target="wall", partner="image"), "partner applies to target disk"),
+        (dict(partner="image", partner_seed=3), "partner_seed applies to partner independent"),
         (dict(wall_width=12.0), "wall_width applies to target wall"),
         (dict(n_wall=800), "n_wall applies to target wall"),
         (dict(target="floor"), "target must be one of"),
@@ -126,6 +160,7 @@ def test_a_binary_scene_refuses_what_does_not_apply(changes, words):
         (["--target", "disk", "--wall-ka", "1"], "--wall-ka applies to --target wall"),
         (["--partner-lattice", "random"], "--partner-lattice applies to --target disk"),
         (["--partner-seed", "3"], "--partner-seed applies to --target disk"),
+        (["--partner", "image"], "--partner applies to --target disk"),
     ],
 )
 def test_the_command_line_refuses_wall_options_for_two_disks(tmp_path, args, words):
