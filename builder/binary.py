@@ -40,7 +40,9 @@ from .scene import (
     DISK,
     DISK_INTERIOR,
     DISK_SURFACE,
+    WALL_FIXED,
     WALL_FREE,
+    WALL_HELD,
     WALL_INTERIOR,
     WALL_SURFACE,
     Scene,
@@ -62,7 +64,7 @@ TYPE_NAMES = {
     DISK_INTERIOR: "disk interior",
     WALL_SURFACE: "target disk surface",
     WALL_INTERIOR: "target disk interior",
-    5: "unused (the wall's held points)",
+    5: "held target disk interior (partner image-held)",
 }
 
 
@@ -80,7 +82,7 @@ def partner_body(spec: SceneSpec, disk: Body) -> Body:
     motion: reflecting the disk in the midplane also reflects its velocity.)
     The turn keeps the ring counter-clockwise and every spring's length.
     """
-    if spec.partner == "image":
+    if spec.partner in ("image", "image-held"):
         return replace(disk, points=-disk.points)
     lattice = spec.partner_lattice or spec.lattice
     readings = (
@@ -306,10 +308,13 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     relative = np.array([speed * np.tan(gamma), -speed])
     direction = relative / np.linalg.norm(relative)
     mass_a, mass_b = len(disk.points), len(target.points)
+    # a held target neither recoils nor gives: the disk brings all the relative velocity
+    held = spec.partner == "image-held"
+    reduced_mass = mass_a if held else mass_a * mass_b / (mass_a + mass_b)
     reach = stand_off(
         contact_energy(spec, mass_a),
         spec.contact_a / R,
-        mass_a * mass_b / (mass_a + mass_b),
+        reduced_mass,
         speed,
         cutoff,
     )
@@ -332,8 +337,8 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
             np.degrees(np.arctan2(touch @ across, -(touch @ direction)))
         ),
     }
-    velocity_a = relative * mass_b / (mass_a + mass_b)
-    velocity_b = -relative * mass_a / (mass_a + mass_b)
+    velocity_a = relative if held else relative * mass_b / (mass_a + mass_b)
+    velocity_b = 0.0 * relative if held else -relative * mass_a / (mass_a + mass_b)
 
     disk_rest = np.setdiff1d(np.arange(len(disk.points)), disk.surface)
     target_rest = np.setdiff1d(np.arange(len(target.points)), target.surface)
@@ -345,21 +350,28 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     velocities = np.concatenate(
         [np.tile(velocity_b, (n_target, 1)), np.tile(velocity_a, (len(disk_order), 1))]
     )
+    # held: the ring keeps the surface type the contact acts on, the interior
+    # is type 5; molecule 3 is not integrated (decks/setup.lmp's mobile) and
+    # needs no springs
+    target_interior = WALL_FIXED if held else WALL_INTERIOR
     types = np.concatenate(
         [
-            np.where(target.role == SURFACE, WALL_SURFACE, WALL_INTERIOR)[target_order],
+            np.where(target.role == SURFACE, WALL_SURFACE, target_interior)[target_order],
             np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order],
         ]
     )
-    molecule = np.concatenate([np.full(n_target, TARGET), np.full(len(disk_order), DISK)])
-
+    molecule = np.concatenate(
+        [np.full(n_target, WALL_HELD if held else TARGET), np.full(len(disk_order), DISK)]
+    )
+    target_springs = target.springs[:0] if held else target.springs
     springs = np.concatenate(
         [
-            renumbered(target.springs, target_order, 0),
+            renumbered(target_springs, target_order, 0),
             renumbered(disk.springs, disk_order, n_target),
         ]
     )
-    ka = np.concatenate([ka_target * target.stiffness, ka_disk * disk.stiffness])
+    target_stiffness = target.stiffness[:0] if held else target.stiffness
+    ka = np.concatenate([ka_target * target_stiffness, ka_disk * disk.stiffness])
     scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
     n_ring_b, n_ring_a = len(target.surface), len(disk.surface)
     scene.info = binary_info(
@@ -415,6 +427,9 @@ def binary_info(
     return {
         "spec": asdict(spec),
         "target": "disk",
+        # partner image-held: the target's points are held (its mass and
+        # inertia are those of its points, but nothing moves it)
+        "target_held": spec.partner == "image-held",
         "units": units_info(spec, disk_material, disk_spacing, ka_disk),
         "disk_material": disk_material,
         "target_material": target_material,

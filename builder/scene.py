@@ -93,7 +93,9 @@ TARGETS = ("wall", "disk")
 # The second disk: independent (its own draw) or the disk's own image through
 # the midpoint of the contact (the disk turned by 180 degrees), which makes the
 # collision symmetric: each disk meets what the other meets (builder/binary.py).
-PARTNERS = ("independent", "image")
+# "image-held": that image with every point held, an immovable rigid copy (no
+# recoil, no compliance), to be met at half the pair's relative speed.
+PARTNERS = ("independent", "image", "image-held")
 WALL_OPTIONS = ("n_wall", "wall_ka", "wall_fixed", "wall_width", "wall_height")
 
 
@@ -178,7 +180,7 @@ class SceneSpec:
     target: str = "wall"
     partner_lattice: str | None = None  # the second disk's lattice; None: the disk's
     partner_seed: int | None = None  # None: the sample's own third stream; N: sample N's disk
-    partner: str = "independent"  # or "image": the disk turned by 180 degrees (PARTNERS)
+    partner: str = "independent"  # "image": the disk turned by 180 degrees; PARTNERS
 
     def __post_init__(self) -> None:
         if self.n_wall is None and isinstance(self.n_disk, (int, np.integer)):
@@ -285,7 +287,7 @@ class SceneSpec:
             if self.partner_seed is not None:
                 SEED.check("partner_seed", self.partner_seed)
             require_choice("partner", self.partner, PARTNERS)
-            if self.partner == "image":
+            if self.partner != "independent":
                 for name in ("partner_lattice", "partner_seed"):
                     if getattr(self, name) is not None:
                         raise InputError(

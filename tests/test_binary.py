@@ -133,6 +133,31 @@ def test_the_image_partners_collision_is_symmetric(tmp_path):
     assert abs(other["vibration_disk"] / other["vibration_target"] - 1) > 1e-3
 
 
+def test_a_held_image_neither_moves_nor_gives(tmp_path):
+    """partner image-held: the image's points are held (molecule 3, no
+    springs), the disk brings the whole relative velocity, and the run keeps
+    the energy while the hold takes momentum."""
+    spec = SceneSpec(
+        **{**BINARY, "seed": 3, "partner": "image-held", "gamma_deg": 50.0, "vn": 0.05}
+    )
+    scene = build_scene(spec)
+    target = scene.molecule != DISK
+    assert set(scene.molecule[target]) == {3}
+    assert not np.isin(scene.springs, np.flatnonzero(target)).any()
+    assert not scene.velocities[target].any()
+    result = run_impact(spec, tmp_path / "held", RunOptions())
+    series = np.loadtxt(tmp_path / "held" / "series.dat")
+    columns = {name: k for k, name in enumerate(BINARY_COLUMNS)}
+    for name in ("tx", "ty"):
+        assert np.ptp(series[:, columns[name]]) == 0.0
+    for name in ("tvx", "tvy", "tLz"):
+        assert not series[:, columns[name]].any()
+    assert result["vibration_target"] == 0.0 and result["target_held"]
+    assert abs(result["energy_drift"]) < 1e-3
+    # the disk's momentum reversed along the normal: the hold took (1 + e) M v_n of it
+    assert result["momentum_change"] > 0.5
+
+
 @pytest.mark.parametrize(
     "changes, words",
     [
