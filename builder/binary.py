@@ -84,6 +84,8 @@ def partner_body(spec: SceneSpec, disk: Body) -> Body:
     """
     if spec.partner in ("image", "image-held"):
         return replace(disk, points=-disk.points)
+    if spec.partner == "surface":
+        return surface_ring(spec, disk.spacing)
     lattice = spec.partner_lattice or spec.lattice
     readings = (
         spec.roughness_direction,
@@ -95,6 +97,37 @@ def partner_body(spec: SceneSpec, disk: Body) -> Body:
         return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
     rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
     return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
+
+
+# partner "surface": the held ring's radius in R. Its curvature is a
+# twentieth of the disk's, so the contact's effective radius is 0.95 R, a
+# flat wall's R to 5 %, while the ring stays small enough to build and aim.
+SURFACE_RADIUS = 20.0
+
+
+def surface_ring(spec: SceneSpec, spacing: float) -> Body:
+    """A wall built like a disk's surface (``partner`` "surface"): a ring of
+    radius SURFACE_RADIUS R with the disk's surface spacing, each point moved
+    along the ring's normal by the disk's roughness (Gaussian, ``roughness``
+    R, correlated along the ring with ``roughness_length`` as the disk's),
+    from the sample's third stream. Only the ring: all its points are held,
+    so it needs no interior and no springs; the contact sees both sides' points,
+    as between two disks.
+    """
+    n = int(round(2.0 * np.pi * SURFACE_RADIUS / spacing))
+    arc = 2.0 * np.pi * SURFACE_RADIUS / n
+    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    radial = spec.roughness * bodies.correlated(rng.standard_normal(n), arc, spec.roughness_length)
+    angle = 2.0 * np.pi * np.arange(n) / n
+    points = (SURFACE_RADIUS + radial)[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
+    return Body(
+        points=points,
+        role=np.full(n, SURFACE),
+        springs=np.zeros((0, 2), int),
+        stiffness=np.zeros(0),
+        surface=np.arange(n),
+        spacing=arc,
+    )
 
 
 def counter_clockwise(ring: np.ndarray) -> bool:
@@ -309,7 +342,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     direction = relative / np.linalg.norm(relative)
     mass_a, mass_b = len(disk.points), len(target.points)
     # a held target neither recoils nor gives: the disk brings all the relative velocity
-    held = spec.partner == "image-held"
+    held = spec.partner in ("image-held", "surface")
     reduced_mass = mass_a if held else mass_a * mass_b / (mass_a + mass_b)
     reach = stand_off(
         contact_energy(spec, mass_a),
@@ -318,9 +351,11 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
         speed,
         cutoff,
     )
-    offset = aim(ring_a, ring_b, direction, gamma, reach, R)
+    # the aim's scale: the mean of both radii (the surface's ring is 20 R)
+    scale = 0.5 * (R + float(np.linalg.norm(target_points, axis=1).max()))
+    offset = aim(ring_a, ring_b, direction, gamma, reach, scale)
     centre = on_grid(
-        place_projectile(ring_a, ring_b, direction, offset, R, cutoff * (1 + spec.start_gap)),
+        place_projectile(ring_a, ring_b, direction, offset, scale, cutoff * (1 + spec.start_gap)),
         quantum,
     )
     # the first contact the run will see, from where the disk is put
@@ -330,7 +365,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     aimed = {
         "reach": reach,
         "offset": offset,
-        "rigid_offset": 2.0 * R * float(np.sin(gamma)),
+        "rigid_offset": 2.0 * scale * float(np.sin(gamma)),
         # R/c from the start: the run's time of the first contact
         "first_touch_time": float(travel / np.linalg.norm(relative)),
         "first_touch_incidence_deg": float(
@@ -429,7 +464,7 @@ def binary_info(
         "target": "disk",
         # partner image-held: the target's points are held (its mass and
         # inertia are those of its points, but nothing moves it)
-        "target_held": spec.partner == "image-held",
+        "target_held": spec.partner in ("image-held", "surface"),
         "units": units_info(spec, disk_material, disk_spacing, ka_disk),
         "disk_material": disk_material,
         "target_material": target_material,

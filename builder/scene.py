@@ -94,8 +94,9 @@ TARGETS = ("wall", "disk")
 # the midpoint of the contact (the disk turned by 180 degrees), which makes the
 # collision symmetric: each disk meets what the other meets (builder/binary.py).
 # "image-held": that image with every point held, an immovable rigid copy (no
-# recoil, no compliance), to be met at half the pair's relative speed.
-PARTNERS = ("independent", "image", "image-held")
+# recoil, no compliance), to be met at half the pair's relative speed;
+# "surface": a held, nearly flat wall built like a disk's surface (builder/binary.py).
+PARTNERS = ("independent", "image", "image-held", "surface")
 WALL_OPTIONS = ("n_wall", "wall_ka", "wall_fixed", "wall_width", "wall_height")
 
 

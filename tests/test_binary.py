@@ -11,7 +11,7 @@ import pytest
 
 from analysis.binary import apse, binary_rebound, momentum_change
 from analysis.series import BINARY_COLUMNS
-from builder.binary import counter_clockwise
+from builder.binary import SURFACE_RADIUS, counter_clockwise
 from builder.errors import InputError
 from builder.scene import DISK, SceneSpec, build_scene
 from runner.impact import run_impact
@@ -156,6 +156,28 @@ def test_a_held_image_neither_moves_nor_gives(tmp_path):
     assert abs(result["energy_drift"]) < 1e-3
     # the disk's momentum reversed along the normal: the hold took (1 + e) M v_n of it
     assert result["momentum_change"] > 0.5
+
+
+def test_the_surface_partner_is_a_held_ring_built_like_the_disks_surface(tmp_path):
+    """partner surface: a held ring of radius 20 R at the disk's surface
+    spacing, its points moved along the normal by the disk's roughness; met
+    by the disk, the line of centres at the apse and at the first touch agree
+    to within what the ring's curvature turns them by (a wall's fixed normal)."""
+    spec = SceneSpec(**{**BINARY, "seed": 5, "partner": "surface", "gamma_deg": 45.0, "vn": 0.05})
+    scene = build_scene(spec)
+    target = scene.molecule != DISK
+    ring = scene.positions[target]
+    radius = np.linalg.norm(ring, axis=1) / spec.radius
+    assert set(scene.molecule[target]) == {3} and set(scene.types[target]) == {3}
+    assert abs(np.median(radius) - SURFACE_RADIUS) < 0.01
+    assert np.std(radius) == pytest.approx(spec.roughness, rel=0.1)
+    steps = np.linalg.norm(np.diff(ring, axis=0), axis=1) / spec.radius
+    assert np.median(steps) == pytest.approx(scene.info["disk_spacing"] / spec.radius, rel=0.05)
+    result = run_impact(spec, tmp_path / "surface", RunOptions())
+    angles = [result[f"normal_angle_deg_{name}"] for name in ("apse", "first_touch")]
+    # the contact slides about v_t T = 0.05 c x 8 R/c = 0.4 R: 1.1 degrees of a 21 R orbit
+    assert np.ptp(angles) < 2.0
+    assert result["vibration_target"] == 0.0 and abs(result["energy_drift"]) < 1e-3
 
 
 @pytest.mark.parametrize(
