@@ -351,8 +351,8 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
         speed,
         cutoff,
     )
-    # the aim's scale: the mean of both radii (the surface's ring is 20 R)
-    scale = 0.5 * (R + float(np.linalg.norm(target_points, axis=1).max()))
+    # the aim's scale: R, or for the surface's 20 R ring the mean of both radii
+    scale = 0.5 * (1.0 + SURFACE_RADIUS) * R if spec.partner == "surface" else R
     offset = aim(ring_a, ring_b, direction, gamma, reach, scale)
     centre = on_grid(
         place_projectile(ring_a, ring_b, direction, offset, scale, cutoff * (1 + spec.start_gap)),
