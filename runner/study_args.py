@@ -82,6 +82,7 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
             *MODEL_READINGS,
             "target",
             "partner_lattice",
+            "partner",
         )
         if getattr(args, key) is not None
     }
