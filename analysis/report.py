@@ -9,13 +9,14 @@ from collections import Counter
 from pathlib import Path
 
 from builder.errors import InputError
-from builder.scene import MODEL_READINGS
+from builder.run_options import RUN_OPTIONS
+from builder.scene import SCENE_OPTIONS
 
 from . import binary_findings, binary_page, figures, grazing, normal_check, speed, speed_page
 from .claims import claims
 from .estimates import study_estimates
 from .page import claims_section, fits_section, measures_section, nu_section, statistics_section
-from .result import BINARY_FINITE, FINITE, MAX_DRIFT
+from .result import BINARY_FINITE, FINITE
 from .sections import (  # noqa: F401 (failure_cause: the benchmarks' rows)
     SECTIONS,
     drift_section,
@@ -55,33 +56,6 @@ def angle_options(study: dict) -> str:
     return f"--angles {study['angles']}"
 
 
-def wall_options(study: dict) -> str:
-    """The study's reading of the wall as options (studies from before the
-    readings had the disk's density, springs for its c, the sides held), or
-    a binary study's target (it has no wall)."""
-    if study.get("target") == "disk":
-        partner = study.get("partner_lattice")
-        image = " --partner image" if study.get("partner") == "image" else ""
-        return "--target disk" + (f" --partner-lattice {partner}" if partner else "") + image
-    n_wall = study.get("n_wall", "density")
-    wall_ka = study.get("wall_ka", "same-c")
-    # n_wall None: twice the disk's points, what leaving out --n-wall gives
-    points = "" if n_wall is None else f"--n-wall {n_wall} "
-    return (
-        f"{points}--wall-ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}'} "
-        f"--wall-fixed {study.get('wall_fixed', 'sides')}"
-    )
-
-
-def model_options(study: dict) -> str:
-    """The readings of the model as runner study's options (studies from before
-    they were options had the first choices)."""
-    return " ".join(
-        f"--{name.replace('_', '-')} {study.get(name, choices[0])}"
-        for name, choices in MODEL_READINGS.items()
-    )
-
-
 def speed_options(study: dict) -> str:
     """--speeds if the study has a speed axis, else --vn."""
     if study.get("speeds"):
@@ -96,38 +70,19 @@ def stop_rule(study: dict) -> str:
     return study["options"]["stop_rule"]
 
 
-def step(dt) -> str:
-    """A study's dt as --dt takes it: a number, or "auto"."""
-    return dt if isinstance(dt, str) else f"{dt:g}"
-
-
-def resolution_options(study: dict) -> str:
-    """How the study carries the model to its resolution, where it departs
-    from the defaults (studies from before these options have them)."""
-    words = ""
-    if study.get("roughness_length"):
-        words += f"--roughness-length {study['roughness_length']:g} "
-    if study.get("contact_scaling", "spacing") != "spacing":
-        words += f"--contact-scaling {study['contact_scaling']} "
-    return words
-
-
 def made_by(study: dict, preset: str) -> str:
-    """The command that runs the study again, every option spelled out."""
-    # a binary study has no wall (wall_options gives its target instead)
-    width = (
-        "" if study.get("target") == "disk" else f"--wall-width {study.get('wall_width', 8.0):g} "
-    )
-    return (
+    """The command that runs the study again, every option spelled out: the
+    grid, then each scene and run option the way its declaration says
+    (builder.declared.Option.made_by_words; a binary study has no wall, a
+    wall study no partner)."""
+    grid = (
         f"python -m runner study {preset} --name {study['name']} --lattices "
         f"{' '.join(study['lattices'])} {angle_options(study)} --samples {study['samples']} "
-        f"{speed_options(study)} --roughness {study.get('roughness', 0.03):g} "
-        f"--n-disk {study['n_disk']} --radius {study.get('radius', 1.0):g} "
-        f"{width}--contact-a {study.get('contact_a', 300.0):g} {wall_options(study)} "
-        f"{model_options(study)} {resolution_options(study)}"
-        f"--dt {step(study['options']['dt'])} "
-        f"--max-drift {study['options'].get('max_drift', MAX_DRIFT):g}"
+        f"{speed_options(study)}"
     )
+    scene = [option.made_by_words(study) for option in SCENE_OPTIONS if option.study]
+    run = [option.made_by_words(study["options"]) for option in RUN_OPTIONS]
+    return " ".join(word for word in (grid, *scene, *run) if word)
 
 
 def speed_unit_name(study: dict) -> str:

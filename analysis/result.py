@@ -8,6 +8,7 @@ import os
 import tempfile
 from pathlib import Path
 
+from builder.run_options import MAX_DRIFT
 from builder.scene import MODEL_READINGS
 
 from .binary import binary_energy_split, binary_normals, binary_rebound, momentum_change
@@ -19,7 +20,7 @@ from .series import read_energies, read_series
 # for the scene. On the default scene at the default dt = 2e-3 the paper
 # study's 6,400 drifts have a median of 9.4e-5, 99 % below 4.7e-3 and the
 # largest 2.1e-2; dt = 0.02 drifts 0.13 (docs/benchmarks/time_vs_error.md).
-MAX_DRIFT = 0.05
+# MAX_DRIFT, builder.run_options's: the runs' default.
 # What the study's tables read from every result.json.
 REQUIRED = (
     "lattice",

@@ -15,7 +15,8 @@ import numpy as np
 from . import bodies
 from .bodies import SURFACE, Body
 from .checks import Range
-from .errors import InputError, require_choice
+from .declared import Option, by_name, with_options
+from .errors import InputError
 from .geometry import Polyline
 from .materials import spring_constant
 
@@ -46,6 +47,20 @@ MODEL_READINGS = {
     "surface_row": bodies.SURFACE_ROWS,
     "regular_surface": bodies.REGULAR_SURFACES,
 }
+# Each reading's default (the rule's pick: docs/model.md, docs/model_readings.md)
+# and what its choices mean, in the order of the "made by" command line.
+MODEL_OPTIONS = (
+    ("contact_mass", "disk",
+     "the m of the contact's V0 = a m c^2 R / 2: one point's mass, or the disk's"),
+    ("speed_unit", "c", "the unit of --vn: c, the calibrated wave speed, or the disk springs' "
+     "one-dimensional sound speed d sqrt(ka / m)"),
+    ("roughness_direction", "normal",
+     "surface points displaced along the surface normal, or in both directions"),
+    ("surface_row", "even",
+     "the disk's surface row evenly spaced on the circle, or a Poisson-disk sample of it"),
+    ("regular_surface", "band", "the triangular and square disks' surface: a row joined to the "
+     "lattice by a band of springs, or the lattice's own outermost points"),
+)  # fmt: skip
 # What a scene.json, result or impacts.csv row made before these options means.
 FIRST_READING = {name: choices[0] for name, choices in MODEL_READINGS.items()}
 # The ranges of the scene's numbers, for SceneSpec.validate and the command line
@@ -140,72 +155,91 @@ def require_contact_resolved(decay: float, spacing: float, spec=None) -> None:
         )
 
 
-@dataclass
-class SceneSpec:
-    """Everything that defines a scene; the seed fixes all its random draws."""
-
-    lattice: str = "random"
-    seed: int = 1
-    gamma_deg: float = 45.0  # incidence angle from the wall normal; 0 is head-on
-    vn: float = 0.1  # normal approach speed, in units of c
-    radius: float = 1.0  # R, the unit of length
-    n_disk: int = 800  # target number of points in the disk
-    # The wall's and the model's reading (MODEL.md section 8) that the rule picks:
-    # docs/model.md, docs/model_readings.md.
+# Every option of a scene, declared once (builder/declared.py): SceneSpec's
+# fields and checks, the command line's options (builder/cli.py, runner
+# study), a study file's [scene] keys and the "made by" command line follow
+# from this table. The order is the "made by" command line's.
+LATTICE_NAMES = tuple(bodies.LATTICES)
+SCENE_OPTIONS = (
+    Option("lattice", "random", "disk lattice; the wall is always random", words=LATTICE_NAMES,
+           study=False),
+    Option("seed", 1, "sample seed", SEED, study=False),
+    Option("gamma_deg", 45.0, "incidence angle", ANGLE, scene_numbers=GAMMA, flag="--gamma",
+           study=False),  # the code's 0 (head-on) too
+    Option("vn", 0.1, "normal approach speed: where the default run resolves the contact "
+           "(docs/benchmarks/stability_speeds.md)", VN, scene_numbers=SUBSONIC, study=False),
+    Option("roughness", 0.03, "std of the surface roughness", ROUGHNESS, made_by="always"),
+    Option("n_disk", 800, "points in the disk", N_DISK, made_by="always"),
+    Option("radius", 1.0, "disk radius; every length and time scales with it", RADIUS,
+           made_by="always"),
+    Option("wall_width", 8.0, "the wall's width (docs/model.md section 1; on grazing angles, "
+           "its choices as built)", WALL_WIDTH, applies="wall", made_by="always"),
+    Option("contact_a", 300.0, "decay rate of the contact, a R at 800 disk points with "
+           "--contact-scaling spacing", CONTACT_A, made_by="always"),
+    Option("target", "wall", "what the disk hits: the wall, or a second free disk, both moving "
+           "so that the centre of mass is at rest (docs/model.md, 'Two disks')", words=TARGETS,
+           made_by="changed"),
+    Option("partner_lattice", None, "--target disk: the second disk's lattice (default: the "
+           "disk's)", words=LATTICE_NAMES, applies="disk", made_by="changed", kind=str | None),
+    Option("partner", "independent", "--target disk: independent, image (the disk itself "
+           "turned by 180 degrees, a symmetric collision), image-held (that image held, "
+           "immovable) or surface (a held, nearly flat wall built like a disk's surface)",
+           words=PARTNERS, applies="disk", made_by="changed"),
     # points in the wall, or "density": the disk's number density; None: twice
     # the disk's (the paper's 1,600 for 800), so that the wall follows the
-    # disk's resolution
-    n_wall: int | str | None = None
-    roughness: float = 0.03  # std of surface displacement, in R
-    # the roughness's correlation length along the surface, in R; 0: each
-    # point drawn on its own (the paper), whose slopes grow as the disk is refined
-    roughness_length: float = 0.0
-    k2_over_k1: float = 3.0 / 7.0  # square lattice only
-    kb_over_ka: float = 1e-3
-    wall_fixed: str = "sides"
-    wall_width: float = 8.0  # in R
-    wall_height: float = 2.0  # in R
-    wall_ka: float | str = 10.0  # wall's ka over the random disk's, or "same-c": wave speed c
-    contact_a: float = 300.0  # decay rate of the contact, a R (at 800 points with "spacing")
-    # the contact as the disk is refined: a R and V0 "fixed", or following the spacing
-    contact_scaling: str = "spacing"
-    # The readings of the model (MODEL.md section 8; MODEL_READINGS below).
-    contact_mass: str = "disk"  # V0 = a m c^2 R / 2 with m one point's mass or the disk's
-    speed_unit: str = "c"  # vn in units of c, or of the springs' sound speed d sqrt(ka / m)
-    roughness_direction: str = "normal"  # along the surface normal, or in both directions
-    surface_row: str = "even"  # the disk's surface row: evenly spaced, or at random
-    regular_surface: str = "band"  # a regular disk's surface: a joined row, or its own points
-    contact_time_guess: float = 9.0  # R / c; centres the sliding contact on the wall
-    start_gap: float = 0.1  # extra gap beyond the cutoff at start, in spacings
-    # What the disk hits: the wall, or a second disk (builder/binary.py).
-    target: str = "wall"
-    partner_lattice: str | None = None  # the second disk's lattice; None: the disk's
-    partner_seed: int | None = None  # None: the sample's own third stream; N: sample N's disk
-    partner: str = "independent"  # "image": the disk turned by 180 degrees; PARTNERS
+    # disk's resolution. A record from before the wall's readings had "density".
+    Option("n_wall", None, "points in the wall, or 'density': the disk's number density "
+           "(default: twice --n-disk, the paper's 1600 for 800)", N_WALL, (WALL_DENSITY,),
+           applies="wall", made_by="changed", before=WALL_DENSITY, kind=int | str | None),
+    Option("wall_ka", 10.0, "the wall's spring constant in units of the random disk's ka (that "
+           "of a random lattice at the disk's number density with wave speed c), the same for "
+           "every disk lattice, or 'same-c': the wall's springs give it the wave speed c",
+           WALL_KA, (WALL_SAME_C,), applies="wall", made_by="always", before=WALL_SAME_C,
+           kind=float | str),
+    Option("wall_fixed", "sides", "which wall points are held fixed", words=WALL_FIXED_CHOICES,
+           applies="wall", made_by="always"),
+    *(Option(name, default, meaning, words=MODEL_READINGS[name], made_by="always",
+             before=MODEL_READINGS[name][0])
+      for name, default, meaning in MODEL_OPTIONS),
+    Option("roughness_length", 0.0, "the roughness's correlation length along the surface, 0 "
+           "(each point drawn on its own, the paper) or a length (docs/model.md, 'The model as "
+           "the resolution grows')", ROUGHNESS_LENGTH, (0.0, 0), hide_words=True,
+           made_by="changed"),
+    Option("contact_scaling", "spacing", "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
+           "times sqrt(800 / n_disk), the contact's energy per length of surface held; fixed: a "
+           "and V0 as at 800 points, the paper's (docs/model.md, 'The model as the resolution "
+           "grows')", words=CONTACT_SCALINGS, made_by="changed"),
+    Option("k2_over_k1", 3.0 / 7.0, "square lattice only: diagonal over nearest spring "
+           "constant", K2_OVER_K1, study=False),
+    Option("kb_over_ka", 1e-3, "bond over spring constant", KB_OVER_KA, study=False, cli=False),
+    Option("wall_height", 2.0, "the wall's height", WALL_HEIGHT, study=False, cli=False),
+    Option("contact_time_guess", 9.0, "centres the sliding contact on the wall",
+           Range(0.0, 1000.0, unit="R/c"), study=False, cli=False),
+    Option("start_gap", 0.1, "extra gap beyond the cutoff at start, in spacings",
+           Range(0.0, 100.0, low_open=True), study=False, cli=False),
+    Option("partner_seed", None, "--target disk: take sample N's disk as the second disk "
+           "(default: a stream of the sample's own seed, so that each sample pairs two "
+           "independent disks)", SEED, study=False, applies="disk", kind=int | None),
+)  # fmt: skip
+SCENE = by_name(SCENE_OPTIONS)
+# A scene's numbers as one type: 60 and 60.0 must not write different metadata.
+INTEGERS = tuple(o.name for o in SCENE_OPTIONS if o.numbers is not None and o.numbers.integer)
+FLOATS = tuple(o.name for o in SCENE_OPTIONS if o.numbers is not None and not o.numbers.integer)
+
+
+@with_options(SCENE_OPTIONS)
+class SceneSpec:
+    """Everything that defines a scene; the seed fixes all its random draws.
+    Its fields are SCENE_OPTIONS's."""
 
     def __post_init__(self) -> None:
         if self.n_wall is None and isinstance(self.n_disk, (int, np.integer)):
             self.n_wall = 2 * int(self.n_disk)
-        # Same spec, same files: 60 and 60.0 must not write different metadata.
-        for name, kind in (("seed", int), ("n_disk", int), ("n_wall", int)):
+        for name in INTEGERS:
             value = getattr(self, name)
             if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
-                setattr(self, name, kind(value))
-        for name in (
-            "gamma_deg",
-            "vn",
-            "radius",
-            "roughness",
-            "roughness_length",
-            "k2_over_k1",
-            "kb_over_ka",
-            "wall_width",
-            "wall_height",
-            "wall_ka",
-            "contact_a",
-            "contact_time_guess",
-            "start_gap",
-        ):
+                setattr(self, name, int(value))
+        for name in FLOATS:
             value = getattr(self, name)
             if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
                 value, bool
@@ -213,36 +247,16 @@ class SceneSpec:
                 setattr(self, name, float(value))
 
     def validate(self) -> None:
-        require_choice("lattice", self.lattice, bodies.LATTICES)
-        SEED.check("seed", self.seed)
-        GAMMA.check("gamma_deg", self.gamma_deg)
-        SUBSONIC.check("vn", self.vn)
-        RADIUS.check("radius", self.radius)
-        N_DISK.check("n_disk", self.n_disk)
-        if self.n_wall != WALL_DENSITY and not N_WALL.contains(self.n_wall):
+        for option in SCENE_OPTIONS:  # each alone, then what they must be together
+            option.check(getattr(self, option.name))
+        if self.roughness_length != 0.0 and (
+            self.surface_row != "even"
+            or (self.regular_surface == "lattice" and self.lattice != "random")
+        ):
             raise InputError(
-                f"n_wall must be {N_WALL.describe()} or {WALL_DENSITY!r}, got {self.n_wall!r}"
-            )
-        ROUGHNESS.check("roughness", self.roughness)
-        if self.roughness_length != 0.0:
-            ROUGHNESS_LENGTH.check("roughness_length", self.roughness_length)
-            if self.surface_row != "even" or (
-                self.regular_surface == "lattice" and self.lattice != "random"
-            ):
-                raise InputError(
-                    "roughness_length applies to evenly spaced surface rows (surface_row even, "
-                    "regular_surface band), got surface_row "
-                    f"{self.surface_row}, regular_surface {self.regular_surface}"
-                )
-        require_choice("contact_scaling", self.contact_scaling, CONTACT_SCALINGS)
-        K2_OVER_K1.check("k2_over_k1", self.k2_over_k1)
-        KB_OVER_KA.check("kb_over_ka", self.kb_over_ka)
-        require_choice("wall_fixed", self.wall_fixed, WALL_FIXED_CHOICES)
-        WALL_WIDTH.check("wall_width", self.wall_width)
-        WALL_HEIGHT.check("wall_height", self.wall_height)
-        if self.wall_ka != WALL_SAME_C and not WALL_KA.contains(self.wall_ka):
-            raise InputError(
-                f"wall_ka must be {WALL_KA.describe()} or {WALL_SAME_C!r}, got {self.wall_ka!r}"
+                "roughness_length applies to evenly spaced surface rows (surface_row even, "
+                "regular_surface band), got surface_row "
+                f"{self.surface_row}, regular_surface {self.regular_surface}"
             )
         if not N_WALL.contains(self.wall_points):
             raise InputError(
@@ -250,10 +264,7 @@ class SceneSpec:
                 f"at the disk's density over a {self.wall_width:g} R wide wall); it must have "
                 f"{N_WALL.describe()}"
             )
-        CONTACT_A.check("contact_a", self.contact_a)
         require_contact_resolved(self.contact_decay * self.radius, self.wall_spacing, self)
-        for name, choices in MODEL_READINGS.items():
-            require_choice(name, getattr(self, name), choices)
         if self.regular_surface == "lattice":
             if self.lattice == "random":
                 raise InputError(
@@ -265,36 +276,26 @@ class SceneSpec:
                     "surface_row random places a surface row, which regular_surface lattice "
                     "does not have (its surface is the lattice's own points)"
                 )
-        Range(0.0, 1000.0).check("contact_time_guess", self.contact_time_guess)
-        Range(0.0, 100.0, low_open=True).check("start_gap", self.start_gap)
-        require_choice("target", self.target, TARGETS)
-        if self.target == "wall":
+        applies = {o.name: o.applies for o in SCENE_OPTIONS if o.applies}
+        for name, target in applies.items():  # another target's option is refused, not ignored
+            default = 2 * self.n_disk if name == "n_wall" else SCENE[name].default
+            if target != self.target and getattr(self, name) != default:
+                raise InputError(
+                    f"{name} applies to target disk (a second disk), got target wall"
+                    if target == "disk"
+                    else f"{name} applies to target wall; a binary scene (target disk) has no wall"
+                )
+        if self.target == "disk" and self.partner != "independent":
             for name in ("partner_lattice", "partner_seed"):
                 if getattr(self, name) is not None:
                     raise InputError(
-                        f"{name} applies to target disk (a second disk), got target wall"
+                        f"{name} applies to partner independent; partner image is the "
+                        "disk's own image"
                     )
-            if self.partner != SceneSpec.partner:
-                raise InputError("partner applies to target disk (a second disk), got target wall")
-        else:
-            for name in WALL_OPTIONS:
-                default = 2 * self.n_disk if name == "n_wall" else getattr(SceneSpec, name)
-                if getattr(self, name) != default:
-                    raise InputError(
-                        f"{name} applies to target wall; a binary scene (target disk) has no wall"
-                    )
-            if self.partner_lattice is not None:
-                require_choice("partner_lattice", self.partner_lattice, bodies.LATTICES)
-            if self.partner_seed is not None:
-                SEED.check("partner_seed", self.partner_seed)
-            require_choice("partner", self.partner, PARTNERS)
-            if self.partner != "independent":
-                for name in ("partner_lattice", "partner_seed"):
-                    if getattr(self, name) is not None:
-                        raise InputError(
-                            f"{name} applies to partner independent; partner image is the "
-                            "disk's own image"
-                        )
+        if self.target == "disk" and self.wall_height != SCENE["wall_height"].default:
+            raise InputError(
+                "wall_height applies to target wall; a binary scene (target disk) has no wall"
+            )
 
     @property
     def resolution_scale(self) -> float:

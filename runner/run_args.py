@@ -8,151 +8,31 @@ import sys
 from builder.errors import InputError
 
 from .lammps_run import LammpsError
-from .options import (
-    AUTO,
-    CHECK_INTERVAL,
-    CONTACTS,
-    DEFAULT_DT,
-    DRIFT,
-    DT,
-    DUMP_EVERY,
-    INTEGRATORS,
-    MAX_CHUNK_TIME,
-    NPROCS,
-    NRESPA,
-    ROUTES,
-    RULES,
-    SPRINGS,
-    STEPS,
-    TMAX,
-    RunOptions,
-)
+from .options import AUTO, DEFAULT_DT, RUN_OPTIONS, RunOptions
 
-MAX_DRIFT_HELP = (
-    "flag a run whose energy drift (change of the total energy over the initial "
-    "kinetic energy) exceeds this: its time step is too large (default: {:g}; "
-    "99 %% of the paper study below 4.7e-3 at the default dt; docs/benchmarks/time_vs_error.md)"
-)
-
-
-def time_step(text: str) -> float | str:
-    """--dt: a step, or "auto" (runner.options.RunOptions.for_scene)."""
-    if text == AUTO:
-        return text
-    try:
-        return DT(text)
-    except argparse.ArgumentTypeError:
-        raise argparse.ArgumentTypeError(f"must be {DT.describe()} or 'auto', got {text}") from None
-
-
-time_step.numbers = DT  # tests/test_bad_input.py feeds it bad numbers
+# Options that apply to one integrator or contact: None means "not given",
+# and giving them for another is refused (options_from_args).
+GIVEN_ONLY = {"nrespa": ("integrator", "respa"), "rule": ("contact", "segment")}
 
 
 def add_run_arguments(parser) -> None:
+    """Every run option of runner impact and runner run (builder.run_options)."""
     group = parser.add_argument_group("run")
-    defaults = RunOptions()
-    group.add_argument(
-        "--dt",
-        type=time_step,
-        default=defaults.dt,
-        help=f"time step, {DT.describe()}, or auto: {DEFAULT_DT:g} at 800 disk points, "
-        "scaled with the finer body's spacing (default: auto)",
-    )
-    group.add_argument(
-        "--check",
-        type=STEPS,
-        default=defaults.check,
-        help="steps between checks whether the impact is over, a multiple of the "
-        f"series' rows; check * dt must be at most {MAX_CHUNK_TIME:g} R/c (default: the "
-        f"steps nearest {CHECK_INTERVAL:g} R/c, {defaults.check_steps} at dt {DEFAULT_DT:g})",
-    )
-    group.add_argument("--integrator", choices=INTEGRATORS, default=defaults.integrator)
-    group.add_argument(
-        "--nrespa",
-        type=NRESPA,
-        default=None,
-        help=f"respa: contact steps per step of --dt (the contact alone on the inner "
-        f"level), {NRESPA.describe()} (default: {defaults.nrespa})",
-    )
-    group.add_argument(
-        "--contact",
-        choices=CONTACTS,
-        default=defaults.contact,
-        help="segment: the paper's point-to-polyline contact (default); "
-        "pair: the same exponential between points",
-    )
-    group.add_argument(
-        "--rule",
-        choices=RULES,
-        default=None,
-        help="segment contact: lever rule (default) or explicit gradient",
-    )
-    group.add_argument(
-        "--springs",
-        choices=SPRINGS,
-        default=defaults.springs,
-        help="bond style: harmonic/quartic (the project's own, default) or "
-        "class2, the same quartic springs; harmonic: no quartic",
-    )
-    group.add_argument(
-        "--tmax",
-        type=TMAX,
-        default=defaults.tmax,
-        help=f"stop with an error if the disk has not left by then, {TMAX.describe()}",
-    )
-    group.add_argument(
-        "--dump-every",
-        type=DUMP_EVERY,
-        default=0,
-        help=f"steps between dump frames, {DUMP_EVERY.describe()} (0: no dump)",
-    )
-    group.add_argument(
-        "--stop-rule",
-        choices=("predict", "clearance"),
-        default=defaults.stop_rule,
-        help="when the impact is over: predict (rigid-body extrapolation, default) "
-        "or clearance (wait until the disk clears every asperity)",
-    )
-    group.add_argument(
-        "--np", dest="nprocs", type=NPROCS, default=1, help=f"MPI ranks, {NPROCS.describe()}"
-    )
-    group.add_argument(
-        "--route",
-        choices=ROUTES,
-        default="lmp",
-        help="lmp program (default) or the lammps Python module",
-    )
-    group.add_argument(
-        "--max-drift",
-        type=DRIFT,
-        default=defaults.max_drift,
-        help=MAX_DRIFT_HELP.format(defaults.max_drift),
-    )
+    for option in RUN_OPTIONS:
+        if option.cli:
+            option.add_argument(group, None if option.name in GIVEN_ONLY else option.default)
 
 
 def options_from_args(args: argparse.Namespace) -> RunOptions:
     """The run's options; an option that does not apply to the chosen
     integrator or contact is refused, not ignored."""
-    if args.nrespa is not None and args.integrator != "respa":
-        raise InputError(f"--nrespa applies to --integrator respa only, got {args.integrator}")
-    if args.rule is not None and args.contact != "segment":
-        raise InputError(f"--rule applies to --contact segment only, got {args.contact}")
-    defaults = RunOptions()
-    return RunOptions(
-        dt=args.dt,
-        check=args.check,
-        integrator=args.integrator,
-        nrespa=args.nrespa if args.nrespa is not None else defaults.nrespa,
-        contact=args.contact,
-        rule=args.rule if args.rule is not None else defaults.rule,
-        springs=args.springs,
-        tmax=args.tmax,
-        dump_every=args.dump_every,
-        stop_rule=args.stop_rule,
-        nprocs=args.nprocs,
-        route=args.route,
-        max_drift=args.max_drift,
-    )
+    for name, (other, wanted) in GIVEN_ONLY.items():
+        if getattr(args, name) is not None and getattr(args, other) != wanted:
+            raise InputError(
+                f"--{name} applies to --{other} {wanted} only, got {getattr(args, other)}"
+            )
+    given = {o.name: getattr(args, o.name) for o in RUN_OPTIONS if o.cli}
+    return RunOptions(**{k: v for k, v in given.items() if v is not None})
 
 
 def unstable_hint(error: Exception, args) -> str:

@@ -10,17 +10,18 @@ from __future__ import annotations
 import json
 import os
 import shutil
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, field
 from pathlib import Path
 
 import numpy as np
 
 from builder.checks import require_out_folder, word_problem
+from builder.declared import with_options
 from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.materials import STUDY_LATTICES
 from builder.outputs import NAME_MAX, runs_folder
-from builder.scene import SEED, VN, SceneSpec, build_scene, wall_spring_constant
+from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, build_scene, wall_spring_constant
 
 from .folders import (
     SET_ASIDE,
@@ -79,8 +80,16 @@ def study_angles(count: int) -> list[float]:
     return [round(float(np.degrees(np.arctan(1.0 / p))), 4) for p in psi]
 
 
-@dataclass
+# The scene's options a study takes (builder.scene.SCENE_OPTIONS): Study's
+# fields, a study file's [scene] keys, runner study's options, study.json's.
+STUDY_SCENE = tuple(option for option in SCENE_OPTIONS if option.study)
+
+
+@with_options(STUDY_SCENE, after="speeds")
 class Study:
+    """A study: its grid (lattices x angles x samples, speeds), its scene's
+    options (STUDY_SCENE, a field each) and its run (``options``)."""
+
     name: str
     lattices: tuple[str, ...] = tuple(LATTICES)
     angles: int = 16
@@ -91,28 +100,7 @@ class Study:
     vn: float = 0.1
     # impact speeds as a study axis (the speed preset); empty: `vn` alone
     speeds: tuple[float, ...] = ()
-    n_disk: int = 800
-    radius: float = SceneSpec.radius  # R; lengths and times scale with it
-    roughness: float = SceneSpec.roughness
-    roughness_length: float = SceneSpec.roughness_length  # R; 0: each point on its own
-    wall_width: float = 8.0  # R; MODEL.md's, too short at grazing angles (docs/model.md)
-    contact_a: float = 300.0  # a R at 800 points (contact_scaling spacing: docs/model.md)
-    contact_scaling: str = SceneSpec.contact_scaling
-    # the reading of the wall (MODEL.md section 8); None: twice the disk's points
-    n_wall: int | str | None = SceneSpec.n_wall
-    wall_ka: float | str = SceneSpec.wall_ka
-    wall_fixed: str = SceneSpec.wall_fixed
-    # the readings of the model (MODEL.md section 8; builder.scene.MODEL_READINGS)
-    contact_mass: str = SceneSpec.contact_mass
-    speed_unit: str = SceneSpec.speed_unit
-    roughness_direction: str = SceneSpec.roughness_direction
-    surface_row: str = SceneSpec.surface_row
-    regular_surface: str = SceneSpec.regular_surface
-    # what the disk hits: the wall, or a second disk (builder/binary.py), of
-    # the disk's lattice unless partner_lattice names another
-    target: str = SceneSpec.target
-    partner_lattice: str | None = SceneSpec.partner_lattice
-    partner: str = SceneSpec.partner  # or "image": the disk turned by 180 degrees
+    # here: the scene's options a study takes (STUDY_SCENE), in their table's order
     options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
     # the grid its study file gave when the study was first run (study.json
     # keeps it): a file changed since is refused, not run on the old grid
@@ -252,28 +240,14 @@ class Study:
         only; where their surface is the lattice's own, they have no row to place."""
         regular = LATTICES[job["lattice"]]["lattice"] != "random"
         own_surface = regular and self.regular_surface == "lattice"
+        scene = {option.name: getattr(self, option.name) for option in STUDY_SCENE}
+        scene["surface_row"] = "even" if own_surface else self.surface_row
+        scene["regular_surface"] = self.regular_surface if regular else SceneSpec.regular_surface
         return SceneSpec(
-            contact_mass=self.contact_mass,
-            speed_unit=self.speed_unit,
-            roughness_direction=self.roughness_direction,
-            surface_row="even" if own_surface else self.surface_row,
-            regular_surface=self.regular_surface if regular else SceneSpec.regular_surface,
+            **scene,
             seed=job["seed"],
             gamma_deg=job["gamma"],
             vn=job.get("vn", self.vn),
-            radius=self.radius,
-            n_disk=self.n_disk,
-            roughness=self.roughness,
-            roughness_length=self.roughness_length,
-            wall_width=self.wall_width,
-            contact_a=self.contact_a,
-            contact_scaling=self.contact_scaling,
-            n_wall=self.n_wall,
-            wall_ka=self.wall_ka,
-            wall_fixed=self.wall_fixed,
-            target=self.target,
-            partner_lattice=self.partner_lattice,
-            partner=self.partner,
             **LATTICES[job["lattice"]],
         )
 

@@ -11,13 +11,16 @@ from pathlib import Path
 from builder.errors import InputError
 from builder.materials import calibrated
 from builder.outputs import runs_folder
-from builder.scene import MODEL_READINGS, speed_warning
+from builder.scene import speed_warning
 
 from .lammps_run import ROOT as LAMMPS_ROOT
 from .lammps_run import STYLE_LIBRARIES
-from .options import on_ranks
-from .study import EXTENDABLE, Study
+from .options import RUN_OPTIONS, on_ranks
+from .study import EXTENDABLE, STUDY_SCENE, Study
 from .values import ANGLES
+
+# runner study's run options (a study file's [run] takes every one).
+STUDY_RUN = tuple(option for option in RUN_OPTIONS if option.study_cli)
 
 
 class EnvironmentFault(RuntimeError):
@@ -65,25 +68,7 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
         file_changes["lattices"] = tuple(dict.fromkeys((*base.lattices, *said["lattices"])))
     changes = {
         key: getattr(args, key)
-        for key in (
-            "samples",
-            "angles",
-            "vn",
-            "roughness",
-            "roughness_length",
-            "n_disk",
-            "radius",
-            "wall_width",
-            "contact_a",
-            "contact_scaling",
-            "n_wall",
-            "wall_ka",
-            "wall_fixed",
-            *MODEL_READINGS,
-            "target",
-            "partner_lattice",
-            "partner",
-        )
+        for key in ("samples", "angles", "vn", *(o.name for o in STUDY_SCENE))
         if getattr(args, key) is not None
     }
     for dest in ("lattices", "cot_gamma", "speeds"):
@@ -109,7 +94,7 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
     elif args.vn is not None and base.speeds:
         changes["speeds"] = ()  # one speed: the study's axis collapses to --vn
     options = {
-        key: getattr(args, key) for key in ("dt", "max_drift") if getattr(args, key) is not None
+        o.name: getattr(args, o.name) for o in STUDY_RUN if getattr(args, o.name) is not None
     }
     if options:
         changes["options"] = replace(base.options, **options)

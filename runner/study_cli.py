@@ -5,33 +5,12 @@ from __future__ import annotations
 import argparse
 import time
 
-from builder.bodies import LATTICES as BODY_LATTICES
 from builder.checks import InPath, require_out_folder
-from builder.cli import (
-    add_model_arguments,
-    add_wall_arguments,
-    roughness_length,
-)
 from builder.errors import InputError
-from builder.scene import (
-    CONTACT_A,
-    CONTACT_SCALINGS,
-    MODEL_READINGS,
-    N_DISK,
-    PARTNERS,
-    RADIUS,
-    ROUGHNESS,
-    TARGETS,
-    VN,
-)
+from builder.scene import VN
 
 from .cluster_args import SLURM_ONLY, add_cluster_arguments, cluster_from_args, option
-from .options import (
-    DT,
-    RunOptions,
-)
 from .provenance import record_wall_clock
-from .run_args import MAX_DRIFT_HELP, time_step
 from .studies import study_file, study_names
 from .study import (
     ANGLES,
@@ -41,7 +20,7 @@ from .study import (
     Study,
     runs_folder,
 )
-from .study_args import study_from_args
+from .study_args import STUDY_RUN, STUDY_SCENE, study_from_args
 from .study_file import READINGS_KINDS, StudyFile, axis_studies
 from .study_outputs import (
     combine_tables,
@@ -50,7 +29,7 @@ from .study_outputs import (
     shown,
     study_places,
 )
-from .values import GRID, RUN, SCENE
+from .values import GRID
 
 
 def study_name(text: str) -> str:
@@ -133,9 +112,6 @@ def add_study_arguments(study) -> None:
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
     scene = study.add_argument_group("the scene and the run (default: the study's)")
     scene.add_argument(
-        "--dt", type=time_step, default=None, help=f"time step, {DT.describe()}, or auto"
-    )
-    scene.add_argument(
         "--vn", type=GRID["vn"], default=None, help=f"normal approach speed, {VN.describe()}"
     )
     scene.add_argument(
@@ -147,70 +123,8 @@ def add_study_arguments(study) -> None:
         help=f"these normal approach speeds as an axis of the study instead of --vn, each "
         f"{VN.describe()}",
     )
-    scene.add_argument(
-        "--roughness",
-        type=SCENE["roughness"],
-        default=None,
-        help=f"std of the surface roughness, {ROUGHNESS.describe()}",
-    )
-    scene.add_argument(
-        "--radius",
-        type=SCENE["radius"],
-        default=None,
-        help=f"disk radius, {RADIUS.describe()} (default: 1; every length and time scales with it)",
-    )
-    scene.add_argument(
-        "--n-disk",
-        type=SCENE["n_disk"],
-        default=None,
-        help=f"points in each disk, {N_DISK.describe()} (default: 800)",
-    )
-    scene.add_argument(
-        "--contact-a",
-        type=SCENE["contact_a"],
-        default=None,
-        help=f"contact decay rate at 800 disk points, {CONTACT_A.describe()} (default: 300)",
-    )
-    scene.add_argument(
-        "--contact-scaling",
-        choices=CONTACT_SCALINGS,
-        default=None,
-        help="the contact as the disk is refined: spacing (a times the spacing held; "
-        "default) or fixed (the paper's a R at any resolution)",
-    )
-    scene.add_argument(
-        "--roughness-length",
-        type=roughness_length,
-        default=None,
-        help="the roughness's correlation length, R (0: each point on its own; default)",
-    )
-    add_wall_arguments(scene, defaults=False)
-    scene.add_argument(
-        "--target",
-        choices=TARGETS,
-        default=None,
-        help="what the disk hits: the wall, or a second free disk (default: the study's, wall)",
-    )
-    scene.add_argument(
-        "--partner-lattice",
-        choices=BODY_LATTICES,
-        default=None,
-        help="--target disk: the second disk's lattice (default: the disk's)",
-    )
-    scene.add_argument(
-        "--partner",
-        choices=PARTNERS,
-        default=None,
-        help="--target disk: independent (default) or image, the disk itself turned by 180 "
-        "degrees (a symmetric collision)",
-    )
-    add_model_arguments(scene, defaults=False)
-    scene.add_argument(
-        "--max-drift",
-        type=RUN["max_drift"],
-        default=None,
-        help=MAX_DRIFT_HELP.format(RunOptions().max_drift),
-    )
+    for declared in (*STUDY_SCENE, *STUDY_RUN):  # builder.scene, builder.run_options
+        declared.add_argument(scene, default=None)
     pages = study.add_argument_group("tables, fits and the page")
     pages.add_argument("--report-only", action="store_true", help="only tables, fits and figures")
     pages.add_argument(
@@ -247,24 +161,9 @@ STUDY_OPTIONS = (
     "cot_gamma",
     "lattices",
     "extend",
-    "dt",
     "vn",
     "speeds",
-    "roughness",
-    "roughness_length",
-    "n_disk",
-    "radius",
-    "contact_a",
-    "contact_scaling",
-    "n_wall",
-    "wall_ka",
-    "wall_fixed",
-    "wall_width",
-    *MODEL_READINGS,
-    "target",
-    "partner_lattice",
-    "partner",
-    "max_drift",
+    *(option.name for option in (*STUDY_SCENE, *STUDY_RUN)),
     "report_only",
 )
 
