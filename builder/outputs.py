@@ -128,9 +128,9 @@ def page_owner(page: str, pages: Mapping[str, str], readings: Mapping[str, tuple
     page : str
         A page's name (docs/<page>.md, docs/<page>/).
     pages : mapping of str to str
-        Each study file's page by study (runner.study.DOC_PAGES).
+        Each study file's page by study (runner.studies.built_in_pages).
     readings : mapping of str to tuple of str
-        The readings each study's page tabulates (runner.study.READINGS).
+        The readings each study's page tabulates (runner.studies.built_in_pages).
     """
     for study, own in pages.items():
         if page == own:
