@@ -34,8 +34,8 @@ from bench.common import (
 )
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
+from ground.launch import LammpsError, command_line
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError, command_line
 from runner.options import RunOptions
 
 CONTACTS = ("none", "pair", "segment")

@@ -50,8 +50,8 @@ from bench.common import (
 )
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
+from ground.launch import command_line
 from runner.impact import run_scene
-from runner.lammps_run import command_line
 from runner.options import DT, NRESPA
 from runner.study import PRESETS
 

@@ -32,8 +32,8 @@ import numpy as np
 
 from bench.common import SEED_COUNT, bench_parser, markdown_table, refuse, write_report
 from builder import bodies
-from builder.errors import BuildError, InputError
 from builder.scene import SEED, _sample_seeds
+from ground.errors import BuildError, InputError
 from runner.study import LATTICES
 
 DELTA = 0.03

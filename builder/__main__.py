@@ -5,10 +5,11 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .checks import OutFolder, Range
+from ground.checks import OutFolder, Range
+from ground.errors import BuildError, InputError
+
 from .cli import OneLineParser, add_scene_arguments, spec_from_args, validate_spec
 from .contact_table import POINTS, table_name, table_text
-from .errors import BuildError, InputError
 from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES, write_scene
 from .scene import build_scene
 

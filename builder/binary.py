@@ -31,9 +31,10 @@ from dataclasses import asdict, replace
 import numpy as np
 from scipy.optimize import brentq
 
+from ground.errors import InputError
+
 from . import bodies
 from .bodies import SURFACE, Body
-from .errors import InputError
 from .geometry import distance_to_polyline
 from .materials import spring_constant
 from .scene import (

@@ -14,12 +14,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.paths import BUILD
+
 from .contact_table import ensure_table, table_name
 from .scene import DISK, Scene
 
 # Decks run from the project's root and find the contact tables here: derived
 # files, made when first needed, so under build/ and not in the source tree.
-TABLES = Path(__file__).resolve().parents[1] / "build" / "tables"
+TABLES = BUILD / "tables"
 
 SPRING_STYLES = ("harmonic/quartic", "class2", "harmonic")
 # The project's own bond style (potentials/bond_harmonic_quartic.cpp): the same

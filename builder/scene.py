@@ -12,10 +12,11 @@ from functools import lru_cache
 
 import numpy as np
 
+from ground.checks import Range
+from ground.errors import InputError, require_choice
+
 from . import bodies
 from .bodies import SURFACE, Body
-from .checks import Range
-from .errors import InputError, require_choice
 from .geometry import Polyline
 from .materials import spring_constant
 
@@ -556,7 +557,7 @@ def build_scene(spec: SceneSpec) -> Scene:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If ``spec`` is invalid or its lattice is not calibrated.
     """
     spec.validate()

@@ -5,12 +5,12 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
-from builder.errors import InputError
 from builder.materials import TABLE
 from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
+from ground.checks import OutFolder, Range, require_out_folder
+from ground.errors import InputError
 from runner.study import runs_folder
 
 from .stretch import ROOT, run_stretch

@@ -18,9 +18,9 @@ import numpy as np
 from scipy.spatial import ConvexHull, Voronoi
 
 from builder.strips import StripSpec, make_strip, write_strip
+from ground.paths import DECKS, ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
-DECK = ROOT / "decks" / "stretch.lmp"
+DECK = DECKS / "stretch.lmp"
 
 
 @dataclass

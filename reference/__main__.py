@@ -5,9 +5,9 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import OneLineParser
-from builder.errors import InputError
+from ground.checks import InPath, OutFolder, require_out_folder
+from ground.errors import InputError
 from runner.options import DT
 from runner.study import runs_folder
 

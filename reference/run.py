@@ -13,7 +13,7 @@ import numpy as np
 
 from analysis.result import analyse_run, write_json_atomically
 from analysis.series import BINARY_COLUMNS, COLUMNS
-from builder.errors import InputError
+from ground.errors import InputError
 
 from .contact import InsideWall
 from .data import read_data

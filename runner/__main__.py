@@ -11,7 +11,6 @@ import time
 from pathlib import Path
 
 from builder.bodies import LATTICES as BODY_LATTICES
-from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
     add_model_arguments,
@@ -21,7 +20,6 @@ from builder.cli import (
     spec_from_args,
     validate_spec,
 )
-from builder.errors import BuildError, InputError
 from builder.scene import (
     CONTACT_A,
     CONTACT_SCALINGS,
@@ -33,9 +31,11 @@ from builder.scene import (
     VN,
     speed_warning,
 )
+from ground.checks import InPath, OutFolder, require_out_folder
+from ground.errors import BuildError, InputError
+from ground.launch import LammpsError
 
 from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
-from .lammps_run import LammpsError
 from .options import (
     AUTO,
     CHECK_INTERVAL,
@@ -829,7 +829,7 @@ def docs_page(args, described) -> str | None:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         For --docs where the study has no page, or with a --name that is not
         one of its readings, or a page that is another study's.
     """

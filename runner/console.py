@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import importlib
 import sys
-from pathlib import Path
 
-BENCH = Path(__file__).resolve().parents[1] / "bench"
+from ground.paths import ROOT
+
+BENCH = ROOT / "bench"
 # subcommand -> (module with main(argv), the words it puts first, what it does)
 COMMANDS = {
     "scene": ("builder.__main__", ["scene"], "build a scene folder (python -m builder scene)"),

@@ -21,10 +21,10 @@ from pathlib import Path
 
 import pytest
 
-from builder.checks import InPath, OutFolder, Range
+from ground.checks import InPath, OutFolder, Range
+from ground.paths import ROOT
 from tests.helpers import RUNS
 
-ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "bench"
 
 # The values of the table: the non-finite ones and a word are bad for
@@ -235,7 +235,7 @@ def no_work(monkeypatch, module) -> None:
             "runner.study",
             "runner.driver",
             "runner.clusters",
-            "runner.lammps_run",
+            "ground.launch",
             "builder.scene",
             "analysis.report",
             "calibration.table",

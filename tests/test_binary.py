@@ -12,8 +12,8 @@ import pytest
 from analysis.binary import apse, binary_rebound, momentum_change
 from analysis.series import BINARY_COLUMNS
 from builder.binary import counter_clockwise
-from builder.errors import InputError
 from builder.scene import DISK, SceneSpec, build_scene
+from ground.errors import InputError
 from runner.impact import run_impact
 from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
 from runner.study import Study

@@ -13,11 +13,11 @@ from scipy.spatial import Delaunay, cKDTree
 
 from builder import bodies
 from builder.bodies import FIXED, SURFACE
-from builder.errors import InputError
 from builder.geometry import distance_to_polyline, distance_to_segments
 from builder.lammps_data import data_file_text
 from builder.network import _Mesh, constrain, outline_edges, unique_edges
 from builder.scene import DISK, SceneSpec, _sample_seeds, build_bodies, build_scene
+from ground.errors import InputError
 from runner.study import LATTICES
 from tests.helpers import ROOT, SMALL
 

@@ -8,7 +8,6 @@ import json
 import numpy as np
 import pytest
 
-from builder.errors import InputError
 from builder.materials import (
     TABLE,
     calibrated,
@@ -23,6 +22,7 @@ from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch
 from calibration.table import RANDOM_STRIP, anisotropy, markdown, stretch_all
+from ground.errors import InputError
 from tests.helpers import ROOT, SMALL
 
 

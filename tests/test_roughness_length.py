@@ -57,7 +57,7 @@ def test_a_correlated_disk_filters_the_seeds_own_draw():
 
 
 def test_uneven_rows_are_refused():
-    from builder.errors import InputError
+    from ground.errors import InputError
 
     with pytest.raises(InputError, match="roughness_length applies to evenly spaced"):
         SceneSpec(surface_row="random", roughness_length=0.05).validate()

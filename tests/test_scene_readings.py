@@ -116,7 +116,7 @@ def test_the_default_scene_is_the_chosen_reading():
     ],
 )
 def test_bad_reading_in_a_spec(field, value, words):
-    from builder.errors import InputError
+    from ground.errors import InputError
 
     with pytest.raises(InputError, match=words.replace("[", r"\[")):
         build_scene(SceneSpec(**{**SMALL, field: value}))

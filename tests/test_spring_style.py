@@ -16,7 +16,7 @@ import pytest
 
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import mpi_environment, mpi_launcher
+from ground.launch import mpi_environment, mpi_launcher
 from tests.helpers import ROOT, new_lammps
 
 DECK = ROOT / "tests" / "decks" / "spring_forces.lmp"

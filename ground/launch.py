@@ -1,4 +1,7 @@
-"""Runs decks/impact.lmp with the lmp program (serial or MPI) or the lammps module."""
+"""Starting LAMMPS, for every package: decks/impact.lmp (or another deck) with the lmp
+program, serial or under MPI, or in this process through the lammps module
+with the project's styles registered; and what its log says (the error, the
+version)."""
 
 from __future__ import annotations
 
@@ -12,9 +15,10 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-DECK = ROOT / "decks" / "impact.lmp"
-RESTART_DECK = ROOT / "decks" / "write_restart.lmp"
+from .paths import BUILD, DECKS, ROOT
+
+DECK = DECKS / "impact.lmp"
+RESTART_DECK = DECKS / "write_restart.lmp"
 
 
 class LammpsError(RuntimeError):
@@ -265,4 +269,4 @@ def register_styles(lmp) -> None:
 
     for (kind, style), (library, function) in STYLE_LIBRARIES.items():
         if not lmp.has_style(kind, style):
-            getattr(ctypes.CDLL(str(ROOT / "build" / library)), function)(lmp.lmp)
+            getattr(ctypes.CDLL(str(BUILD / library)), function)(lmp.lmp)
