@@ -192,7 +192,7 @@ calibrate: setup
 # LAMMPS at the default settings against the reference on ten scenes
 # (docs/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
-	$(PYTHON) -m reference validate --docs
+	$(PYTHON) -m bench.validation --docs
 
 # Run time against error for LAMMPS's integrators and time steps and the
 # reference (docs/benchmarks/time_vs_error.md); about half an hour.

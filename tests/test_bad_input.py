@@ -120,7 +120,7 @@ ENTRY_POINTS = [
     EntryPoint(
         "python -m reference",
         "reference.__main__",
-        {"run": ["run", "{scene}"], "validate": ["validate", "--out", "{out}"]},
+        {"run": ["run", "{scene}"]},
     ),
     *bench_entry_points(),
 ]
