@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from bench.common import bench_parser, markdown_table, output_folder, write_report
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import build_scene
 from ground.checks import OutFolder
 from ground.paths import runs_folder
 from reference.run import ReferenceOptions

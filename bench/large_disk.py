@@ -44,8 +44,9 @@ from bench.common import (
     refuse,
     write_report,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import N_WALL, Scene, SceneSpec, build_scene
+from builder.scene import N_WALL, Scene, SceneSpec
 from ground.checks import Range
 from ground.errors import InputError
 from ground.launch import run_lmp

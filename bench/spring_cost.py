@@ -38,8 +38,9 @@ from bench.common import (
     refuse,
     timer_seconds,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from ground.errors import InputError
 from ground.launch import command_line
 

@@ -25,9 +25,10 @@ import numpy as np
 
 from analysis.series import read_energies
 from bench.common import bench_parser, markdown_table, write_report
+from builder.assembly import build_scene
 from builder.lammps_data import read_data, write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec, build_scene
+from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec
 from ground.launch import LammpsError
 from runner.impact import run_scene
 from runner.options import DEFAULT_DT, RESPA_NRESPA, RunOptions

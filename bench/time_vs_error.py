@@ -39,8 +39,8 @@ from bench.common import (
     refuse,
     write_report,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import build_scene
 from ground.checks import OutFolder
 from ground.errors import InputError
 from ground.launch import LammpsError

@@ -18,9 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
+from builder.assembly import build_scene
 from builder.cli import OneLineParser
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from ground.checks import OutFolder, require_out_folder
 from ground.errors import InputError
 from ground.paths import DOCS, runs_folder

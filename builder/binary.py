@@ -37,6 +37,8 @@ from . import bodies
 from .bodies import SURFACE, Body
 from .geometry import distance_to_polyline
 from .materials import spring_constant
+from .placement import on_grid, placement_quantum, renumbered
+from .sample import sample_disk, sample_seeds
 from .scene import (
     DISK,
     DISK_INTERIOR,
@@ -46,13 +48,8 @@ from .scene import (
     WALL_SURFACE,
     Scene,
     SceneSpec,
-    _sample_seeds,
     contact_energy,
-    on_grid,
-    placement_quantum,
-    renumbered,
     require_contact_resolved,
-    sample_disk,
     speed_unit,
     units_info,
 )
@@ -79,7 +76,7 @@ def partner_body(spec: SceneSpec) -> Body:
     )
     if spec.partner_seed is not None:
         return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
-    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    rng = np.random.default_rng(sample_seeds(spec.seed)[2])
     return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
 
 
@@ -255,12 +252,12 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     Parameters
     ----------
     spec : SceneSpec
-        The scene; validated by ``builder.scene.build_scene``.
+        The scene; validated by ``builder.assembly.build_scene``.
 
     Returns
     -------
     Scene
-        As ``builder.scene.build_scene``'s; ``info`` has ``target`` "disk" and
+        As ``builder.assembly.build_scene``'s; ``info`` has ``target`` "disk" and
         both disks' masses, moments of inertia and rings.
     """
     R = spec.radius

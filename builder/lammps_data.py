@@ -232,7 +232,7 @@ def write_scene(
     Parameters
     ----------
     scene : Scene
-        A built scene (``builder.scene.build_scene``).
+        A built scene (``builder.assembly.build_scene``).
     folder : pathlib.Path or str
         The run folder; created if missing.
     springs : str

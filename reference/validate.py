@@ -26,9 +26,10 @@ import numpy as np
 
 from analysis.restitution import contact_window
 from analysis.series import read_series
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 
 from .run import ReferenceOptions, run_reference
 

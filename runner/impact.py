@@ -7,8 +7,9 @@ import math
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from ground.checks import word_problem
 from ground.errors import InputError
 from ground.launch import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python

@@ -19,18 +19,11 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result
+from builder.assembly import build_scene
 from builder.lammps_data import write_bodies, write_scene
 from builder.materials import STUDY_LATTICES, calibrated
 from builder.outputs import NAME_MAX
-from builder.scene import (
-    MODEL_READINGS,
-    SEED,
-    VN,
-    SceneSpec,
-    build_scene,
-    speed_warning,
-    wall_spring_constant,
-)
+from builder.scene import MODEL_READINGS, SEED, VN, SceneSpec, speed_warning, wall_spring_constant
 from ground.checks import require_out_folder, word_problem
 from ground.errors import InputError
 from ground.launch import STYLE_LIBRARIES, data_to_restart

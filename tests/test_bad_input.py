@@ -236,7 +236,7 @@ def no_work(monkeypatch, module) -> None:
             "runner.driver",
             "runner.clusters",
             "ground.launch",
-            "builder.scene",
+            "builder.assembly",
             "analysis.report",
             "calibration.table",
             "calibration.stretch",

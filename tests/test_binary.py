@@ -11,8 +11,9 @@ import pytest
 
 from analysis.binary import apse, binary_rebound, momentum_change
 from analysis.series import BINARY_COLUMNS
+from builder.assembly import build_scene
 from builder.binary import counter_clockwise
-from builder.scene import DISK, SceneSpec, build_scene
+from builder.scene import DISK, SceneSpec
 from ground.errors import InputError
 from runner.impact import run_impact
 from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions

@@ -8,6 +8,7 @@ import json
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.materials import (
     TABLE,
     calibrated,
@@ -17,7 +18,7 @@ from builder.materials import (
     square_shear_modulus,
     square_wave_speed_factor,
 )
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from builder import bodies
-from builder.scene import SceneSpec, build_bodies
+from builder.sample import build_bodies
+from builder.scene import SceneSpec
 
 
 def covariance(n: int, spacing: float, length: float) -> np.ndarray:

@@ -9,9 +9,10 @@ import sys
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.bodies import triangular_spacing
 from builder.materials import calibrated
-from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
+from builder.scene import DISK, WALL_HELD, SceneSpec
 from tests.helpers import ROOT, RUNS, SMALL
 
 WALL_AREA = 8.0 * 2.0

@@ -17,8 +17,9 @@ from pathlib import Path
 import psutil
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from ground.errors import InputError
 from ground.launch import lammps_error
 from runner.__main__ import main
