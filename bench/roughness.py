@@ -5,7 +5,7 @@
 Builds the disk of every lattice of the study (runner/study.py LATTICES) and
 the wall of every reading (800, 1,600 points, the disk's number density;
 sides or sides and bottom held) for each seed, as the study does (the streams
-of builder.scene.sample_seeds), and reports per body and reading:
+of builder.sample.sample_seeds), and reports per body and reading:
 
 - how many seeds built, and how many needed a steep surface segment flipped
   into the triangulation (builder/network.py ``constrain``; before it, the

@@ -266,7 +266,7 @@ DIGEST_SCRIPT = """
 import sys
 import numpy as np
 from builder import bodies
-from builder.scene import sample_seeds
+from builder.sample import sample_seeds
 disk = bodies.make_disk(np.random.default_rng(sample_seeds(97)[0]), "random", 800)
 sys.stdout.write(repr((disk.points.tobytes(), disk.springs.tobytes())))
 """
