@@ -59,7 +59,7 @@ def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn):
     (checked here with the distance to the polylines, not the builder's rays)
     where the line of centres makes the nominal angle with the relative
     velocity; rigid circles of radius R would have been aimed short of it."""
-    from builder.binary import first_contact, gap_between
+    from builder.aim import first_contact, gap_between
 
     spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": gamma, "vn": vn, "seed": 5})
     scene = build_scene(spec)
