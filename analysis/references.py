@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .readings import Setup
+from .readings import ONE_BODY, REFERENCES, Setup
 
 TITLE = "Two disks against the symmetric references"
 COLUMNS = (
@@ -64,9 +64,7 @@ COLUMNS = (
     "dt",
     "error",
 )
-# The references that meet one disk, not a pair: run at half the pair's speed.
-ONE_BODY = ("image-held", "surface", "wall")
-ORDER = ("pair", "image", "image-held", "surface", "wall")
+ORDER = tuple(REFERENCES)  # pair, image, image-held, surface, wall
 
 
 def label(choice: dict) -> str:

@@ -20,11 +20,11 @@ import numpy as np
 from .binary_page import verdict
 from .estimates import study_estimates
 from .normal_check import robustness
-from .readings import Setup, markdown_table
-from .references import ONE_BODY, ORDER
+from .readings import ONE_BODY, REFERENCES, Setup, markdown_table
 from .render import render
 from .seeds import seed_bootstrap, seed_tables
 
+ORDER = tuple(REFERENCES)  # pair, image, image-held, surface, wall
 FIGURE = "references_speed.png"
 RESAMPLES = 200
 CHI2_LIMIT = 2.0

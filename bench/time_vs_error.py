@@ -39,16 +39,16 @@ from bench.common import (
     refuse,
     write_report,
 )
-from builder.checks import OutFolder
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import build_scene
+from ground.checks import OutFolder
+from ground.errors import InputError
+from ground.launch import LammpsError
+from ground.paths import runs_folder
 from reference.run import ReferenceOptions, Unstable, run_reference
 from reference.validate import reference_runs, scenes
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError
 from runner.options import DEFAULT_DT, RunOptions
-from runner.study import runs_folder
 
 TOLERANCE = 1e-3  # on e and beta, smooth scenes
 ENERGY_TOLERANCE = 5e-3  # rough scenes: the kinks of l give ~1e-3 at 2e-3 (drift_floor.md)

@@ -1,6 +1,6 @@
 """The scene's command-line options, shared by the builder, the runner and the study.
 
-Every value goes through builder.checks: a number outside its range, a
+Every value goes through ground.checks: a number outside its range, a
 non-finite one or an unknown choice is refused with one line that names the
 option and what it may be, exit status 2, before anything is written.
 """
@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import argparse
 
-from .errors import InputError
+from ground.errors import InputError
+
 from .scene import (
     ANGLE,
     CONTACT_A,

@@ -21,10 +21,12 @@ from pathlib import Path
 from analysis.kinds import kind_module, readings_page
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
 from analysis.sections import impact_state
-from builder.checks import require_out_folder
-from builder.errors import InputError
+from ground.checks import require_out_folder
+from ground.errors import InputError
+from ground.paths import ROOT, runs_folder
+from ground.provenance import machine
 
-from .study import ROOT, check_environment, check_source, machine, runs_folder
+from .study import check_environment, check_source
 from .study_file import StudyFile, axis_studies, combinations
 
 # runner study's options that a readings study takes (its file says the rest).

@@ -27,9 +27,9 @@ from pathlib import Path
 
 from analysis.result import write_json_atomically
 from analysis.sections import impact_state
+from ground.launch import lammps_error
 
 from .impact import run_scene
-from .lammps_run import lammps_error
 from .study import STARTED, Study, prune
 
 # Starts of one impact that may end their worker without a LAMMPS error

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from runner.lammps_run import mpi_environment, mpi_launcher
+from ground.launch import mpi_environment, mpi_launcher
 from tests.helpers import ROOT
 
 DECKS = ROOT / "decks"

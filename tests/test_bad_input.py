@@ -21,10 +21,10 @@ from pathlib import Path
 
 import pytest
 
-from builder.checks import InPath, OutFolder, Range
+from ground.checks import InPath, OutFolder, Range
+from ground.paths import ROOT
 from tests.helpers import RUNS
 
-ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "bench"
 
 # The values of the table: the non-finite ones and a word are bad for
@@ -120,7 +120,7 @@ ENTRY_POINTS = [
     EntryPoint(
         "python -m reference",
         "reference.__main__",
-        {"run": ["run", "{scene}"], "validate": ["validate", "--out", "{out}"]},
+        {"run": ["run", "{scene}"]},
     ),
     *bench_entry_points(),
 ]
@@ -235,8 +235,8 @@ def no_work(monkeypatch, module) -> None:
             "runner.study",
             "runner.driver",
             "runner.clusters",
-            "runner.lammps_run",
-            "builder.scene",
+            "ground.launch",
+            "builder.assembly",
             "analysis.report",
             "calibration.table",
             "calibration.stretch",

@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
+from ground.paths import ROOT
 from tests.helpers import RUNS
 
-ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = sorted(
     p for p in (ROOT / "bench").glob("*.py") if p.name not in ("common.py", "__init__.py")
 )

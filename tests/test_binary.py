@@ -11,9 +11,10 @@ import pytest
 
 from analysis.binary import apse, binary_rebound, momentum_change
 from analysis.series import BINARY_COLUMNS
+from builder.assembly import build_scene
 from builder.binary import SURFACE_RADIUS, counter_clockwise
-from builder.errors import InputError
-from builder.scene import DISK, SceneSpec, build_scene
+from builder.scene import DISK, SceneSpec
+from ground.errors import InputError
 from runner.impact import run_impact
 from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
 from runner.study import Study
@@ -58,7 +59,7 @@ def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn):
     (checked here with the distance to the polylines, not the builder's rays)
     where the line of centres makes the nominal angle with the relative
     velocity; rigid circles of radius R would have been aimed short of it."""
-    from builder.binary import first_contact, gap_between
+    from builder.aim import first_contact, gap_between
 
     spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": gamma, "vn": vn, "seed": 5})
     scene = build_scene(spec)

@@ -12,12 +12,14 @@ import pytest
 from scipy.spatial import Delaunay, cKDTree
 
 from builder import bodies
+from builder.assembly import build_scene
 from builder.bodies import FIXED, SURFACE
-from builder.errors import InputError
 from builder.geometry import distance_to_polyline, distance_to_segments
 from builder.lammps_data import data_file_text
 from builder.network import _Mesh, constrain, outline_edges, unique_edges
-from builder.scene import DISK, SceneSpec, _sample_seeds, build_bodies, build_scene
+from builder.sample import build_bodies, sample_seeds
+from builder.scene import DISK, SceneSpec
+from ground.errors import InputError
 from runner.study import LATTICES
 from tests.helpers import ROOT, SMALL
 
@@ -264,8 +266,8 @@ DIGEST_SCRIPT = """
 import sys
 import numpy as np
 from builder import bodies
-from builder.scene import _sample_seeds
-disk = bodies.make_disk(np.random.default_rng(_sample_seeds(97)[0]), "random", 800)
+from builder.sample import sample_seeds
+disk = bodies.make_disk(np.random.default_rng(sample_seeds(97)[0]), "random", 800)
 sys.stdout.write(repr((disk.points.tobytes(), disk.springs.tobytes())))
 """
 
@@ -284,7 +286,7 @@ def test_steep_fix_is_deterministic():
         for h in (1, 2)
     ]
     assert outputs[0] == outputs[1]
-    rng = np.random.default_rng(_sample_seeds(97)[0])
+    rng = np.random.default_rng(sample_seeds(97)[0])
     disk = bodies.make_disk(rng, "random", 800)
     assert len(disk.steep) == 1
     assert outputs[0].decode() == repr((disk.points.tobytes(), disk.springs.tobytes()))
@@ -363,7 +365,7 @@ def test_fixed_roughness_is_the_drawn_gaussian(kind, seed, name):
     delta = SceneSpec().roughness
     # The displacements are the seed's first normal draws, unchanged: the fix
     # changes springs, never the roughness (docs/model.md).
-    stream = np.random.default_rng(_sample_seeds(seed)[0 if kind == "disk" else 1])
+    stream = np.random.default_rng(sample_seeds(seed)[0 if kind == "disk" else 1])
     if kind == "disk":
         applied = np.linalg.norm(body.points[body.surface], axis=1) - 1.0
         drawn = delta * stream.standard_normal(len(body.surface))
@@ -415,7 +417,7 @@ def full_sphere_tracing(disk_surface, wall_row, velocity, target_gap, contact_x)
 
 @pytest.mark.parametrize("lattice", ["random", "triangular"])
 def test_placing_the_disk_over_the_points_that_may_be_nearest_gives_the_same_centre(lattice):
-    from builder.scene import place_disk
+    from builder.placement import place_disk
 
     spec = SceneSpec(lattice=lattice, seed=2)
     disk, wall = build_bodies(spec)

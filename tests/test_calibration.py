@@ -8,7 +8,7 @@ import json
 import numpy as np
 import pytest
 
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.materials import (
     TABLE,
     calibrated,
@@ -18,11 +18,12 @@ from builder.materials import (
     square_shear_modulus,
     square_wave_speed_factor,
 )
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from builder.strips import StripSpec
 from calibration.pulse import pulse_speed
 from calibration.stretch import run_stretch
 from calibration.table import RANDOM_STRIP, anisotropy, markdown, stretch_all
+from ground.errors import InputError
 from tests.helpers import ROOT, SMALL
 
 

@@ -13,9 +13,10 @@ import json
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import data_file_text
 from builder.materials import calibrated
-from builder.scene import DISK, SceneSpec, build_scene, wall_spring_constant
+from builder.scene import DISK, SceneSpec, wall_spring_constant
 from runner.study import LATTICES, PRESETS, Study
 
 

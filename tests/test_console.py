@@ -23,7 +23,7 @@ SAME = [
     (["study", "no-such-study"], ["-m", "runner", "study", "no-such-study"]),
     (["page", "demo"], ["-m", "runner", "page", "demo"]),
     (["calibrate", "--seeds", "0"], ["-m", "calibration", "run", "--seeds", "0"]),
-    (["validate", "--out", "/proc/x"], ["-m", "reference", "validate", "--out", "/proc/x"]),
+    (["validate", "--out", "/proc/x"], ["-m", "bench.validation", "--out", "/proc/x"]),
     (["bench", "loop_floor", "--repeats", "0"], ["-m", "bench.loop_floor", "--repeats", "0"]),
 ]
 

@@ -97,8 +97,7 @@ def test_mdanalysis_reads_the_same(small_scene_dir, small_scene):
 def test_reference_reader_takes_both_spring_styles(small_scene, tmp_path):
     """harmonic K r0 is class2 r0 K2 K3 K4 with K3 = K4 = 0 (the stop rule and
     the reference read either)."""
-    from builder.lammps_data import write_scene
-    from reference.data import read_data
+    from builder.lammps_data import read_data, write_scene
 
     quartic = read_data(write_scene(small_scene, tmp_path / "class2", "class2") / "scene.data")
     harmonic = read_data(write_scene(small_scene, tmp_path / "harmonic", "harmonic") / "scene.data")

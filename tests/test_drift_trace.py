@@ -11,8 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import FIRST_READING, SceneSpec, build_scene
+from builder.scene import FIRST_READING, SceneSpec
 from reference.run import ReferenceOptions
 from reference.trace import OUT_OF_RANGE, event_kind, feature_codes, trace
 from tests.helpers import SMALL

@@ -12,11 +12,12 @@ import numpy as np
 import pytest
 
 from analysis.dump import open_run, rebound_from_dump
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.errors import InputError
+from ground.launch import LammpsError, lammps_error
 from runner.impact import run_impact, run_scene
-from runner.lammps_run import LammpsError, lammps_error
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
 from tests.helpers import ROOT, SMALL, new_lammps
 

@@ -9,14 +9,14 @@ import subprocess
 import numpy as np
 import pytest
 
-from runner.lammps_run import mpi_environment, run_lmp
+from ground.launch import mpi_environment, run_lmp
 from tests.helpers import ROOT, new_lammps
 
 
 def motion_instance(scene_dir):
     """The scene in LAMMPS with the disk spinning, group functions and
     compute motion/2d side by side."""
-    from runner.lammps_run import register_styles
+    from ground.launch import register_styles
 
     lmp = new_lammps()
     register_styles(lmp)

@@ -13,10 +13,11 @@ import numpy as np
 import pytest
 
 from builder import bodies
+from builder.assembly import build_scene
 from builder.cli import MODEL_OPTIONS
-from builder.errors import InputError
 from builder.materials import square_ratio_for_poisson
-from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec, build_scene
+from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec
+from ground.errors import InputError
 from runner.__main__ import main as runner_main
 from runner.study import PRESETS, Study
 

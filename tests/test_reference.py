@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import FIRST_READING, SceneSpec, build_scene
+from builder.scene import FIRST_READING, SceneSpec
 from reference.run import ReferenceOptions, Stepper, advance, load_model, run_reference
 from runner.impact import run_scene
 from runner.options import RunOptions

@@ -234,7 +234,9 @@ PATH_CASES = [
     command("page speed --out docs", "argument --out: docs is inside docs/"),
     command("page speed --out {docs_link}", "is inside docs/"),
     command("scene --out docs/results", "docs/results is inside docs/", module="builder.__main__"),
-    command("validate --out docs/x", "docs/x is inside docs/", module="reference.__main__"),
+    command(
+        "--out docs/x", "docs/x is inside docs/", "validate --out docs/x", module="bench.validation"
+    ),
     command("run --out studies/x", "studies/x is inside studies/", module="calibration.__main__"),
     command("tilt --out decks/x", "decks/x is inside decks/"),
     command("study demo --name " + "n" * 300, "argument --name: must be a folder name of at most"),

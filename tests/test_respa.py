@@ -20,10 +20,11 @@ import numpy as np
 import pytest
 
 from analysis.series import read_series
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.launch import command_line, mpi_environment, mpi_launcher
 from runner.impact import run_scene
-from runner.lammps_run import command_line, mpi_environment, mpi_launcher
 from runner.options import RESPA_NRESPA, RunOptions
 from tests.helpers import ROOT
 

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from builder import bodies
-from builder.scene import SceneSpec, build_bodies
+from builder.sample import build_bodies
+from builder.scene import SceneSpec
 
 
 def covariance(n: int, spacing: float, length: float) -> np.ndarray:
@@ -57,7 +58,7 @@ def test_a_correlated_disk_filters_the_seeds_own_draw():
 
 
 def test_uneven_rows_are_refused():
-    from builder.errors import InputError
+    from ground.errors import InputError
 
     with pytest.raises(InputError, match="roughness_length applies to evenly spaced"):
         SceneSpec(surface_row="random", roughness_length=0.05).validate()

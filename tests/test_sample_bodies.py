@@ -8,11 +8,13 @@ import filecmp
 import numpy as np
 import pytest
 
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import data_file_text, write_bodies, write_scene
-from builder.scene import DISK, SceneSpec, build_scene, placement_quantum
+from builder.placement import placement_quantum
+from builder.scene import DISK, SceneSpec
+from ground.errors import InputError
+from ground.launch import data_to_restart
 from runner.impact import run_scene
-from runner.lammps_run import data_to_restart
 from runner.options import RunOptions
 from runner.study import BODIES_FOLDER, SampleBodies
 from tests.helpers import SMALL, SMALL_DISK

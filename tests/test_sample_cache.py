@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from builder import bodies, scene
+from builder import assembly, bodies, sample
 from builder.lammps_data import write_scene
 from builder.sample_cache import cache_folder
 from builder.scene import SceneSpec
@@ -22,9 +22,9 @@ def cache(tmp_path, monkeypatch):
 
 def scene_bytes(folder) -> bytes:
     # the bodies of a process's last samples are kept in memory too: draw them here
-    scene._disk.cache_clear()
-    scene._wall.cache_clear()
-    write_scene(scene.build_scene(SPEC), folder, "harmonic/quartic")
+    sample._disk.cache_clear()
+    sample._wall.cache_clear()
+    write_scene(assembly.build_scene(SPEC), folder, "harmonic/quartic")
     return (folder / "scene.data").read_bytes()
 
 

@@ -9,9 +9,10 @@ import sys
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.bodies import triangular_spacing
 from builder.materials import calibrated
-from builder.scene import DISK, WALL_HELD, SceneSpec, build_scene
+from builder.scene import DISK, WALL_HELD, SceneSpec
 from tests.helpers import ROOT, RUNS, SMALL
 
 WALL_AREA = 8.0 * 2.0
@@ -116,7 +117,7 @@ def test_the_default_scene_is_the_chosen_reading():
     ],
 )
 def test_bad_reading_in_a_spec(field, value, words):
-    from builder.errors import InputError
+    from ground.errors import InputError
 
     with pytest.raises(InputError, match=words.replace("[", r"\[")):
         build_scene(SceneSpec(**{**SMALL, field: value}))

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from analysis.speed import power_law, power_law_range
-from builder.errors import InputError
 from builder.scene import SceneSpec
+from ground.errors import InputError
 from runner.study import LATTICES, PRESETS, Study
 from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables

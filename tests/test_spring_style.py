@@ -14,9 +14,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import mpi_environment, mpi_launcher
+from builder.scene import SceneSpec
+from ground.launch import mpi_environment, mpi_launcher
 from tests.helpers import ROOT, new_lammps
 
 DECK = ROOT / "tests" / "decks" / "spring_forces.lmp"

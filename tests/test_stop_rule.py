@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from runner.impact import run_scene
 from runner.options import RunOptions
 from runner.stop_rule import disk_vibration, future_contact_free

@@ -9,7 +9,7 @@ from dataclasses import replace
 
 import pytest
 
-from builder.errors import InputError
+from ground.errors import InputError
 from runner.options import RunOptions
 from runner.study import DOC_PAGES, PRESETS, Study
 from runner.study_file import STUDIES, read_study_file, study_file_text, study_path
@@ -236,7 +236,7 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
     whose wall_ka column tells them apart."""
     import csv
 
-    from runner.study import runs_folder
+    from ground.paths import runs_folder
 
     path = tmp_path / "axis_probe.toml"
     path.write_text(

@@ -17,11 +17,12 @@ from pathlib import Path
 import psutil
 import pytest
 
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.errors import InputError
+from ground.launch import lammps_error
 from runner.__main__ import main
-from runner.lammps_run import lammps_error
 from runner.options import DEFAULT_DT, RunOptions, on_ranks
 from runner.study import Study
 from runner.study_file import read_study_file, study_file_text
@@ -79,7 +80,7 @@ def test_a_killed_worker_leaves_no_lammps_running(tmp_path):
     variables = {"scene": str(scene), "out": str(scene), "early_stop": "no",
                  **RunOptions(dt=DEFAULT_DT, tmax=1000.0).deck_variables()}  # fmt: skip
     code = (
-        "import sys, json; from pathlib import Path; from runner.lammps_run import run_lmp; "
+        "import sys, json; from pathlib import Path; from ground.launch import run_lmp; "
         "run_lmp(json.loads(sys.argv[1]), Path(sys.argv[2]), 2)"
     )
     parent = subprocess.Popen(

@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import pytest
 
+from bench.validation import compare
 from reference.run import ReferenceOptions
-from reference.validate import compare, reference_runs, scenes
+from reference.validate import reference_runs, scenes
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
 
 DEFAULTS = RunOptions(dt=DEFAULT_DT)  # the validation scenes have 800 points

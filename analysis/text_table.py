@@ -1,4 +1,5 @@
-"""Results as a plain-text table."""
+"""Results as a plain-text table (what python -m runner impact and python -m
+reference run print)."""
 
 from __future__ import annotations
 

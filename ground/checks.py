@@ -19,7 +19,7 @@ from numbers import Integral, Real
 from pathlib import Path
 
 from .errors import InputError
-from .outputs import protected_problem
+from .paths import protected_problem
 
 # LAMMPS splits a command at whitespace, takes "#" for a comment, "$" for a
 # variable and quotes and "&" for its own syntax: a path with any of them
@@ -134,7 +134,7 @@ def folder_problem(path: Path | str) -> str | None:
 
 def require_out_folder(name: str, path: Path | str) -> Path:
     """``path`` as a Path if a run can write there (not inside the project's
-    record or code: builder.outputs) and LAMMPS can name it, else InputError
+    record or code: ground.paths) and LAMMPS can name it, else InputError
     naming the option."""
     problem = (
         protected_problem(path) or word_problem(str(Path(path).absolute())) or folder_problem(path)

