@@ -25,7 +25,7 @@ from pathlib import Path
 import pytest
 
 from tests.helpers import ROOT, RUNS
-from tests.test_bad_input import WorkStarted, listing, no_work
+from tests.cli.test_bad_input import WorkStarted, listing, no_work
 
 DOCS = ROOT / "docs"
 SMALL = '[grid]\nlattices = ["random"]\nangles = 2\nsamples = 1\n[scene]\nn_disk = 200\n'

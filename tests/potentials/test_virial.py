@@ -53,7 +53,7 @@ def test_virial_is_the_sum_of_r_dot_f(tmp_path, rule, nprocs):
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_two_rings_virial_is_the_sum_of_r_dot_f(tmp_path, nprocs):
     """Two disks' rings (closed yes partner): both directions tallied."""
-    from tests.test_ring_contact import ring_keywords, two_rings
+    from tests.potentials.test_ring_contact import ring_keywords, two_rings
 
     ring_a, ring_b = two_rings(2)
     extra = ring_keywords(len(ring_b), len(ring_a))

