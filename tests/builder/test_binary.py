@@ -162,6 +162,9 @@ def binary_runs(tmp_path_factory):
     return runs
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
+@pytest.mark.slow
 @pytest.mark.parametrize("run", ["verlet", "two ranks", "respa"])
 def test_a_binary_impact_conserves_momentum_and_angular_momentum(binary_runs, run):
     """Nothing is held: the springs and the lever rule are central, Verlet
@@ -173,6 +176,9 @@ def test_a_binary_impact_conserves_momentum_and_angular_momentum(binary_runs, ru
     assert 0.0 < result["e"] < 1.2 and -1.5 < result["beta"] < 1.0
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
+@pytest.mark.slow
 def test_one_and_two_ranks_give_the_same_rebound(binary_runs):
     one, two = binary_runs["verlet"], binary_runs["two ranks"]
     assert two["e"] == pytest.approx(one["e"], abs=1e-6)
@@ -288,6 +294,7 @@ def test_the_apse_between_rows_is_found_from_its_neighbours():
     assert at == pytest.approx(0.0, abs=1e-3)
 
 
+@pytest.mark.lammps
 def test_the_disks_stop_only_once_parted_for_good(tmp_path):
     """Run on to tmax instead of stopping at the deck's first check after the
     disks parted: e and beta change by round-off only (nothing acts on

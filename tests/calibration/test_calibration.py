@@ -26,6 +26,7 @@ from calibration.table import RANDOM_STRIP, anisotropy, markdown, stretch_all
 from tests.helpers import ROOT, SMALL
 
 
+@pytest.mark.lammps
 @pytest.mark.parametrize("angle", [0.0, 45.0])
 def test_triangular_lattice(tmp_path, angle):
     r = run_stretch(StripSpec("triangular", angle_deg=angle), tmp_path)
@@ -39,6 +40,7 @@ def test_triangular_lattice(tmp_path, angle):
     assert r.imbalance < 1e-6  # settled: the grips balance
 
 
+@pytest.mark.lammps
 @pytest.mark.parametrize("ratio", [1.0 / 9.0, 3.0 / 7.0])
 @pytest.mark.parametrize("angle", [0.0, 45.0])
 def test_square_lattice_against_the_formula(tmp_path, ratio, angle):
@@ -91,6 +93,7 @@ def test_square_ratio_for_a_poisson_ratio():
         square_ratio_for_poisson(1.2)  # nu = r / (1 + r) < 1 along the axes
 
 
+@pytest.mark.lammps
 def test_random_lattice_is_reproducible_across_seeds():
     """Four new strips against the committed table (twelve other seeds)."""
     entry = calibrated("random")
@@ -102,6 +105,7 @@ def test_random_lattice_is_reproducible_across_seeds():
         assert abs(values.mean() - entry[name]) < tolerance
 
 
+@pytest.mark.lammps
 def test_pulse_speed_matches_the_stretched_bar(tmp_path):
     """Dynamics against statics on the same bar (docs/calibration.md): within 1 %.
     Against the table's bulk c the thin bar is up to a few percent faster: its

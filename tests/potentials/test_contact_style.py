@@ -11,6 +11,8 @@ from reference.contact import polyline_contact
 from tests.contact_case import CUTOFF, V0, A, lammps_forces, random_case
 from tests.helpers import ROOT
 
+pytestmark = pytest.mark.lammps
+
 
 def relative(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.abs(a - b).max() / np.abs(b).max())
@@ -129,6 +131,7 @@ def test_a_point_inside_the_wall_stops_the_run(tmp_path):
         lammps_forces(tmp_path, SPECIAL, points)
 
 
+@pytest.mark.mpi
 def test_one_and_two_ranks_give_the_same_forces(tmp_path):
     """The domain is cut at x = 0, through the contact region."""
     vertices, points = random_case(7)

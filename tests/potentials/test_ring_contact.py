@@ -14,6 +14,8 @@ from reference.contact import (
 )
 from tests.contact_case import CUTOFF, V0, A, lammps_forces
 
+pytestmark = pytest.mark.lammps
+
 N_RING = 120  # vertices per ring: spacing 0.052, below the cutoff 0.0673 as in a scene
 
 
@@ -61,7 +63,7 @@ def in_contact(ring_a, ring_b) -> int:
 
 @pytest.mark.parametrize("rule", ["lever", "gradient"])
 @pytest.mark.parametrize("seed", [1, 2])
-@pytest.mark.parametrize("nprocs", [1, 2])
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
 def test_two_rings_equal_the_python_implementation(tmp_path, seed, rule, nprocs):
     """Both directions, every vertex of both rings, to 1e-12; the domain of
     two ranks is cut at x = 0, through the contact."""

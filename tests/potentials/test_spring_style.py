@@ -19,6 +19,8 @@ from builder.scene import SceneSpec, build_scene
 from runner.lammps_run import mpi_environment, mpi_launcher
 from tests.helpers import ROOT, new_lammps
 
+pytestmark = pytest.mark.lammps
+
 DECK = ROOT / "tests" / "decks" / "spring_forces.lmp"
 LIBRARY = ROOT / "build" / "libharmonic_quartic.so"
 
@@ -109,6 +111,7 @@ def test_forces_energies_and_virial_equal_class2(tmp_path, scenes):
         assert np.allclose(quartic[0], class2[0], rtol=1e-12, atol=0.0)
 
 
+@pytest.mark.mpi
 def test_two_ranks_give_the_forces_of_one(tmp_path, scenes):
     """Two ranks cut the scene in two: bonds across the cut, ghost atoms, and
     with newton off bonds computed on both sides."""

@@ -22,6 +22,8 @@ import pytest
 
 from tests.contact_case import lammps_virial, random_case
 
+pytestmark = pytest.mark.lammps
+
 TOLERANCE = 1e-12
 
 
@@ -34,7 +36,9 @@ def r_dot_f(
     return np.array([r[:, 0] @ f[:, 0], r[:, 1] @ f[:, 1], r[:, 0] @ f[:, 1]])
 
 
-@pytest.mark.parametrize("rule, nprocs", [("lever", 1), ("gradient", 1), ("lever", 2)])
+@pytest.mark.parametrize(
+    "rule, nprocs", [("lever", 1), ("gradient", 1), pytest.param("lever", 2, marks=pytest.mark.mpi)]
+)
 def test_virial_is_the_sum_of_r_dot_f(tmp_path, rule, nprocs):
     vertices, points = random_case(8)
     on_vertices, on_points, global_virial, per_atom_sum = lammps_virial(
@@ -50,7 +54,7 @@ def test_virial_is_the_sum_of_r_dot_f(tmp_path, rule, nprocs):
     assert np.abs(per_atom_sum - expected).max() <= TOLERANCE * scale
 
 
-@pytest.mark.parametrize("nprocs", [1, 2])
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
 def test_two_rings_virial_is_the_sum_of_r_dot_f(tmp_path, nprocs):
     """Two disks' rings (closed yes partner): both directions tallied."""
     from tests.potentials.test_ring_contact import ring_keywords, two_rings

@@ -112,6 +112,7 @@ def test_momentum_and_angular_momentum_with_the_contact(model):
     assert np.all(np.abs(invariants() - before) < 1e-12 * scale)
 
 
+@pytest.mark.lammps
 def test_reference_verlet_reproduces_lammps_verlet(tmp_path):
     """The same algorithm on independently written forces: the same result."""
     scene = build_scene(SceneSpec(gamma_deg=45.0, **SMALL))

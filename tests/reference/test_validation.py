@@ -20,6 +20,8 @@ from reference.run import ReferenceOptions
 from reference.validate import compare, reference_runs, scenes
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
 
+pytestmark = [pytest.mark.lammps, pytest.mark.slow]
+
 DEFAULTS = RunOptions(dt=DEFAULT_DT)  # the validation scenes have 800 points
 RESPA = RunOptions(integrator="respa", dt=RESPA_DT, nrespa=RESPA_NRESPA)
 

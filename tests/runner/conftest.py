@@ -17,3 +17,11 @@ def uninterrupted():
     proc = study(name)
     assert proc.returncode == 0, proc.stderr
     return table(name)
+
+
+def pytest_collection_modifyitems(items):
+    # a test that takes the tiny study waits for its LAMMPS runs, alone or first
+    for item in items:
+        if "uninterrupted" in item.fixturenames:
+            item.add_marker(pytest.mark.lammps)
+            item.add_marker(pytest.mark.slow)

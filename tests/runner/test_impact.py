@@ -68,6 +68,7 @@ def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np
     return before, after
 
 
+@pytest.mark.lammps
 def test_free_flight_conserves_momentum_and_angular_momentum(small_scene_dir):
     before, after = free_flight(small_scene_dir, 0.001)
     scale = abs(before[2]) + 1.0
@@ -75,6 +76,7 @@ def test_free_flight_conserves_momentum_and_angular_momentum(small_scene_dir):
     assert np.all(np.abs(after[:3] - before[:3]) < 1e-12 * scale)
 
 
+@pytest.mark.lammps
 def test_free_flight_energy_error_is_small_and_second_order(small_scene_dir):
     errors = [
         abs(after[3] - before[3]) / before[3]
@@ -114,12 +116,14 @@ def head_on(tmp_path_factory):
     return results
 
 
+@pytest.mark.lammps
 def test_slow_head_on_impact_on_a_rigid_wall_is_nearly_elastic(head_on):
     assert head_on[0.03]["e"] > 0.98
     assert head_on[0.03]["beta"] is None  # no tangential motion
     assert abs(head_on[0.03]["energy_drift"]) < 1e-6
 
 
+@pytest.mark.lammps
 def test_restitution_falls_as_the_speed_rises(head_on):
     assert head_on[0.03]["e"] > head_on[0.1]["e"] > head_on[0.2]["e"]
 
@@ -131,6 +135,7 @@ def oblique(tmp_path_factory):
     return folder, result
 
 
+@pytest.mark.lammps
 def test_result_json(oblique):
     folder, result = oblique
     saved = json.loads((folder / "result.json").read_text())
@@ -160,6 +165,7 @@ def test_result_json(oblique):
     assert abs(saved["energy_drift"]) < 1e-3
 
 
+@pytest.mark.lammps
 def test_series_and_dump_agree(oblique):
     folder, result = oblique
     from_dump = rebound_from_dump(open_run(folder))
@@ -171,6 +177,7 @@ def test_series_and_dump_agree(oblique):
     assert from_dump.omega == pytest.approx(result["omega"], rel=1e-6, abs=1e-7)
 
 
+@pytest.mark.lammps
 def test_lmp_and_python_routes_agree(tmp_path, small_scene):
     results = {}
     for route in ("lmp", "python"):
@@ -212,6 +219,7 @@ def test_missing_data_file(tmp_path):
     assert not (tmp_path / "nowhere").exists()
 
 
+@pytest.mark.lammps
 def test_unstable_run_stops_without_a_result(small_scene_dir, tmp_path):
     folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path / "unstable")
     with pytest.raises(LammpsError, match="unstable|inside the wall"):
@@ -225,6 +233,7 @@ def test_unstable_run_stops_without_a_result(small_scene_dir, tmp_path):
     assert not (folder / "result.json").exists()
 
 
+@pytest.mark.lammps
 def test_pair_variant_lets_the_disk_into_the_wall(tmp_path):
     """At 0.1 c disk points slip between the wall's surface points (docs/contact.md)."""
     folder = write_scene(build_scene(SceneSpec(gamma_deg=30.0, **SMALL)), tmp_path / "pair")
@@ -233,6 +242,7 @@ def test_pair_variant_lets_the_disk_into_the_wall(tmp_path):
     assert not (folder / "result.json").exists()
 
 
+@pytest.mark.lammps
 def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
     """On the shortest wall at the most grazing angle the disk reaches the
     wall's end while still pressing into it; the run must say so at once
@@ -259,6 +269,8 @@ def test_disk_that_slides_off_the_wall_stops_without_a_result(tmp_path):
 RESPA = RunOptions(integrator="respa", dt=RESPA_DT, nrespa=RESPA_NRESPA)
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
 @pytest.mark.parametrize(
     "roughness, gamma, bound, options",
     [
@@ -289,6 +301,7 @@ def test_one_and_two_ranks_agree(tmp_path, roughness, gamma, bound, options):
         assert abs(results[0][key] - results[1][key]) < bound
 
 
+@pytest.mark.lammps
 def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     """The guard flags and warns of a drift above --max-drift, naming dt; below
     it, it stays silent. (The default 0.05 sits above the drift of the paper
@@ -310,6 +323,7 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     assert result["drift_exceeded"] is False and abs(result["energy_drift"]) < 1e-2
 
 
+@pytest.mark.lammps
 def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
     """dt = 0.05 R/c (with checks every 40 steps, within 2 R/c) is beyond the
     stability of the springs: the run stops at a check, writes no result,

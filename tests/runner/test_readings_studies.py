@@ -235,6 +235,8 @@ def test_the_tables_hold_what_the_facts_are_made_from():
             assert needed <= set(next(csv.reader(handle)))
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_small_readings_study_runs_and_makes_its_page(tmp_path):
     """One sample at three angles of a 200-point disk, v_n and the roughness
     one at a time: three studies, their rows in one table, and the page."""

@@ -17,12 +17,13 @@ another machine need not repeat. So the two logs
 are compared to 1e-6 over the first CHAOS_FREE_TIME of the impact, the
 approach and the loading, and must stop at the same step; the two-rank
 agreement of a whole impact is tested on a smooth disk, which is not
-chaotic (tests/test_impact.py).
+chaotic (tests/runner/test_impact.py).
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from tests.reference_logs import build_scene, committed_log, run_impact, thermo_rows
 
@@ -38,6 +39,7 @@ def assert_same_rows(ours: np.ndarray, reference: np.ndarray) -> None:
     assert worst <= TOLERANCE, f"thermo rows differ by {worst:.2e} of their scale"
 
 
+@pytest.mark.lammps
 def test_fresh_run_matches_the_reference_log(tmp_path):
     reference = thermo_rows(committed_log(1))
     scene = build_scene(tmp_path / "scene")

@@ -27,6 +27,8 @@ from runner.lammps_run import command_line, mpi_environment, mpi_launcher
 from runner.options import RESPA_NRESPA, RunOptions
 from tests.helpers import ROOT
 
+pytestmark = [pytest.mark.lammps, pytest.mark.mpi]
+
 DECK = ROOT / "tests" / "decks" / "impact_forces.lmp"
 TOLERANCE = 1e-12
 

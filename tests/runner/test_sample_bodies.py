@@ -44,6 +44,7 @@ def test_one_sample_has_one_bodies_file():
     assert data_file_text(other_seed, placed=False) not in texts
 
 
+@pytest.mark.lammps
 @pytest.mark.parametrize(
     ("lattice", "gamma", "target"),
     [
@@ -75,6 +76,7 @@ def test_bodies_and_placed_scene_run_bit_for_bit(tmp_path, lattice, gamma, targe
             assert filecmp.cmp(placed / name, other / name, shallow=False)
 
 
+@pytest.mark.lammps
 def test_a_process_writes_a_sample_once(tmp_path):
     cache = SampleBodies()
     log = tmp_path / "log.lammps"
@@ -95,6 +97,7 @@ def test_a_folder_lammps_cannot_read_is_refused_before_lammps_runs(tmp_path):
         SampleBodies().path(scene, "harmonic/quartic", tmp_path / "a b", tmp_path / "log")
 
 
+@pytest.mark.lammps
 def test_the_driver_removes_the_workers_bodies(tmp_path, monkeypatch):
     """A study's run ends with no .bodies folder, whatever its workers left."""
     from runner.driver import run_study

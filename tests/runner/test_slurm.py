@@ -28,6 +28,8 @@ from tests.helpers import (
 )
 from tests.local_slurm import SlurmUnavailable, one_node_slurm, why_not
 
+pytestmark = [pytest.mark.slurm, pytest.mark.lammps, pytest.mark.slow]
+
 SMALL_STUDY = ["--lattices", "random", "--angles", "4", "--samples", "2", "--n-disk", "200"]
 ON_SLURM = ["--cluster", "slurm", "--jobs", "1", "--cores-per-job", "2"]
 
@@ -132,6 +134,7 @@ def test_the_documented_batch_script_runs_as_written(slurm, tmp_path):
     assert len(list((RUNS / name).rglob("result.json"))) == 2
 
 
+@pytest.mark.mpi
 def test_one_impact_on_two_ranks_under_srun_gives_mpiruns_result(slurm, tmp_path):
     results = {}
     for launcher in ("", "srun --mpi=pmix"):
@@ -149,6 +152,7 @@ def test_one_impact_on_two_ranks_under_srun_gives_mpiruns_result(slurm, tmp_path
     assert results["srun --mpi=pmix"] == results["mpirun"]
 
 
+@pytest.mark.mpi
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="two ranks need two cores")
 def test_a_study_on_two_ranks_under_srun_gives_runner_impacts_rows(slurm, tmp_path):
     """[run] ranks = 2 on Slurm: each job's worker owns 2 cores and starts

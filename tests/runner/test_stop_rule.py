@@ -55,6 +55,7 @@ def test_vibration_amplitude_of_a_breathing_disk():
         assert amplitude >= a * 0.999
 
 
+@pytest.mark.lammps
 @pytest.mark.parametrize("gamma, saves", [(20.0, False), (70.0, True)])
 def test_stopping_early_changes_no_result(tmp_path, gamma, saves):
     """After the predicted stop no force acts on the disk, so the run stopped

@@ -51,6 +51,8 @@ def test_a_killed_study_resumes_and_loses_nothing(uninterrupted):
     assert table(name) == uninterrupted
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_lammps_error_costs_exactly_its_impact():
     """Each LAMMPS error ends its worker's process; exactly that impact is
     marked failed, with the error of its own log, and the others finish."""
@@ -116,6 +118,8 @@ def test_run_study_takes_a_notebooks_client(uninterrupted):
         assert (ours["e"], ours["beta"]) == (theirs["e"], theirs["beta"])
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_joined_cluster_that_gives_tasks_up_loses_no_impact(tmp_path):
     """--scheduler joins a running Dask cluster; where its scheduler gives a
     task up at the first worker it ends (allowed-failures 0), the driver
@@ -186,6 +190,8 @@ def test_a_bad_name_exits_2_and_writes_nothing(name):
     assert runs_listing() == before
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_failed_impact_exits_1_and_the_last_line_counts_by_cause():
     """On a 4 R wall (the first study's dense wall) the grazing impact slides
     off the end; the other finishes, and a tiny --max-drift flags it."""
@@ -272,6 +278,8 @@ def alive(pid: int) -> bool:
     return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_a_signal_stops_the_study_and_every_process_below_it(signum):
     name = "test_study_signal"
@@ -335,6 +343,8 @@ def test_a_missing_plugin_stops_the_study_before_any_impact(monkeypatch, capsys)
     assert not (RUNS / name).exists()
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_study_on_a_larger_disk_is_the_same_study_scaled():
     """--radius scales every length and time: at R = 2 with twice the step, a
     smooth impact has the same e and beta, half the spin and twice the contact."""

@@ -231,6 +231,8 @@ def test_a_list_of_values_is_an_axis_crossed_with_the_others(tmp_path):
     assert all(s.samples == 2 for s in subs)
 
 
+@pytest.mark.lammps
+@pytest.mark.slow
 def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_path):
     """Two walls, one sample at two angles each: four impacts in one table,
     whose wall_ka column tells them apart."""

@@ -1,7 +1,7 @@
 """A study whose impacts run on several MPI ranks each ([run] ranks, --ranks):
 its rows are `runner impact --np`'s bit for bit, a LAMMPS error costs exactly
 its impact, a killed worker leaves no LAMMPS behind, and ranks the workers'
-cores cannot hold are refused before any work. Under Slurm: tests/test_slurm.py.
+cores cannot hold are refused before any work. Under Slurm: tests/runner/test_slurm.py.
 """
 
 from __future__ import annotations
@@ -40,6 +40,9 @@ CORES = os.cpu_count() or 1
 two_cores = pytest.mark.skipif(CORES < 2, reason="two ranks need two cores")
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
+@pytest.mark.slow
 @two_cores
 def test_a_study_on_two_ranks_gives_runner_impacts_rows_bit_for_bit(tmp_path):
     rows = study_on_ranks(tmp_path, "test_ranks_local")
@@ -51,6 +54,8 @@ def test_a_study_on_two_ranks_gives_runner_impacts_rows_bit_for_bit(tmp_path):
         assert record["launcher"] == "mpirun --bind-to none -np 2"
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
 @two_cores
 def test_a_lammps_error_on_two_ranks_fails_exactly_its_impact(tmp_path, monkeypatch):
     """lmp's ERROR ends lmp, not the worker: the task records the impact as
@@ -70,6 +75,8 @@ def test_a_lammps_error_on_two_ranks_fails_exactly_its_impact(tmp_path, monkeypa
     assert not (folder / STARTED).exists()
 
 
+@pytest.mark.lammps
+@pytest.mark.mpi
 @two_cores
 def test_a_killed_worker_leaves_no_lammps_running(tmp_path):
     """The process running lmp under mpirun is SIGKILLed, as a worker killed
