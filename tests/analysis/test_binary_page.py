@@ -56,6 +56,7 @@ def test_only_impacts_both_studies_have_are_compared():
     assert max(numbers["lattices"]["random"]["impacts"]) == 5
 
 
+@pytest.mark.slow
 def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
     """docs/binary_grazing.md from docs/binary_grazing/ and the walls'
     tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):

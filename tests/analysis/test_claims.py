@@ -52,6 +52,7 @@ def find(fits: dict, text: str) -> dict:
     return claim
 
 
+@pytest.mark.slow
 def test_the_claims_have_the_known_numbers_and_verdicts(made):
     fits, _, _ = made
     e = find(fits, "e near 0.8")
@@ -81,6 +82,7 @@ def test_the_claims_have_the_known_numbers_and_verdicts(made):
     assert compliant["procedure_verdict"] == verdict(number["value"], number["error"], 0.3, 0.05)
 
 
+@pytest.mark.slow
 def test_the_page_shows_the_claims_both_fits_and_the_measures(made):
     fits, page, folder = made
     assert "## The paper's claims" in page and "## Model-free measures" in page
@@ -94,6 +96,7 @@ def test_the_page_shows_the_claims_both_fits_and_the_measures(made):
     assert (folder.parent / "page" / "figures" / "mu_eff.png").exists()
 
 
+@pytest.mark.slow
 def test_the_nu_verdict_names_what_else_differs(made):
     _, page, _ = made
     section = page.split("## Does beta depend on the Poisson ratio?")[1].split("\n## ")[0]

@@ -24,6 +24,7 @@ def test_no_peak_where_the_largest_is_at_an_end(y):
     assert peak(np.arange(6.0), y) is None
 
 
+@pytest.mark.slow
 def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
     """Synthetic e(tan gamma) with a known peak, seeds sharing an offset: the
     peak comes back within its bootstrap error, and e > 1 is called

@@ -92,6 +92,7 @@ def test_regular_interiors_are_the_lattices():
     assert np.allclose(diagonal, np.sqrt(2) * square.spacing)
 
 
+@pytest.mark.slow
 def test_surface_roughness_is_gaussian_along_the_normal():
     radii = np.concatenate(
         [np.linalg.norm(make("random", seed=s).points[:90], axis=1) for s in range(20)]

@@ -94,6 +94,7 @@ def test_square_ratio_for_a_poisson_ratio():
 
 
 @pytest.mark.lammps
+@pytest.mark.slow
 def test_random_lattice_is_reproducible_across_seeds():
     """Four new strips against the committed table (twelve other seeds)."""
     entry = calibrated("random")
@@ -106,6 +107,7 @@ def test_random_lattice_is_reproducible_across_seeds():
 
 
 @pytest.mark.lammps
+@pytest.mark.slow
 def test_pulse_speed_matches_the_stretched_bar(tmp_path):
     """Dynamics against statics on the same bar (docs/calibration.md): within 1 %.
     Against the table's bulk c the thin bar is up to a few percent faster: its

@@ -36,7 +36,14 @@ def test_every_study_with_a_page_has_its_tables():
     )
 
 
-@pytest.mark.parametrize("name", WITH_TABLES)
+# pages that take more than ~10 s to make again (pytest --durations=0 on 2026-11-25:
+# 26 to 368 s each on the two cores loaded by other runs; the others under 11 s)
+SLOW_PAGES = {"binary", "binary_grazing", "model_readings", "paper", "resolution", "grazing"}
+
+
+@pytest.mark.parametrize(
+    "name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_PAGES else n for n in WITH_TABLES]
+)
 def test_runner_page_leaves_git_status_clean(name, capsys):
     """The page, its tables and figures written in place, as the command
     does; what differs afterwards is put back as it was (and fails the test)."""

@@ -276,7 +276,7 @@ RESPA = RunOptions(integrator="respa", dt=RESPA_DT, nrespa=RESPA_NRESPA)
     [
         (0.0, 45.0, 1e-12, RunOptions()),
         (0.0, 80.4, 1e-12, RunOptions()),
-        (0.03, 80.4, 1e-4, RunOptions()),
+        pytest.param(0.03, 80.4, 1e-4, RunOptions(), marks=pytest.mark.slow),
         (0.0, 45.0, 1e-12, RESPA),
         (0.0, 80.4, 1e-12, RESPA),
     ],

@@ -73,6 +73,7 @@ def test_the_scene_readings_file_is_the_study_of_its_table():
     assert len({r["gamma_deg"] for r in rows}) == 8
 
 
+@pytest.mark.slow
 def test_the_model_readings_file_is_the_study_of_its_table():
     """Five walls x seven readings of the model (relative to the first
     reading), random and triangular disks, 8 angles, 12 seeds, the five best
@@ -140,7 +141,7 @@ def test_the_wall_width_file_is_the_study_of_its_table():
     ("name", "table_rows"),
     [
         ("scene_readings", 18 + 3),
-        ("model_readings", 35),
+        pytest.param("model_readings", 35, marks=pytest.mark.slow),
         ("fact_sensitivity", 5),
         ("wall_width", 3 * 2),
     ],
@@ -179,6 +180,7 @@ def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
     assert {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()} == before
 
 
+@pytest.mark.slow
 def test_the_default_scene_is_the_pick_of_the_committed_model_readings():
     """The rule's pick from the committed rows, every seed of each reading (the
     page's), is today's default reading."""

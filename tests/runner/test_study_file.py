@@ -257,6 +257,7 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
     assert proc.returncode == 2 and "--wall-ka: wall_ka is an axis" in proc.stderr
 
 
+@pytest.mark.slow
 def test_a_page_has_the_sections_its_file_names(tmp_path):
     """sections = [...]: the page has those, in that order, and no other."""
     from analysis.report import report_from_tables

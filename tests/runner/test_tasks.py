@@ -62,6 +62,7 @@ def test_an_impact_that_keeps_ending_its_worker_without_an_error_fails(job):
     assert f"ended its worker {MAX_ATTEMPTS} times without a LAMMPS error" in outcome["error"]
 
 
+@pytest.mark.lammps
 def test_an_impact_killed_from_outside_runs_again(job):
     """A start without a result and without an ERROR (SIGKILL, a walltime):
     the impact runs, here, with LAMMPS, and its marker goes."""
