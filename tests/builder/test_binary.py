@@ -113,6 +113,7 @@ def test_the_image_partner_is_the_disks_point_image_through_the_midpoint():
     assert np.array_equal(velocities[scene.molecule != DISK], -velocities[scene.molecule == DISK])
 
 
+@pytest.mark.lammps
 def test_the_image_partners_collision_is_symmetric(tmp_path):
     """Turned by 180 degrees about the midpoint, the scene is itself: both
     disks end with the same spin and vibration, and opposite momenta."""
@@ -133,6 +134,7 @@ def test_the_image_partners_collision_is_symmetric(tmp_path):
     assert abs(other["vibration_disk"] / other["vibration_target"] - 1) > 1e-3
 
 
+@pytest.mark.lammps
 def test_a_held_image_neither_moves_nor_gives(tmp_path):
     """partner image-held: the image's points are held (molecule 3, no
     springs), the disk brings the whole relative velocity, and the run keeps
@@ -158,6 +160,7 @@ def test_a_held_image_neither_moves_nor_gives(tmp_path):
     assert result["momentum_change"] > 0.5
 
 
+@pytest.mark.lammps
 def test_the_surface_partner_is_a_held_ring_built_like_the_disks_surface(tmp_path):
     """partner surface: a held ring of radius 20 R at the disk's surface
     spacing, its points moved along the normal by the disk's roughness; met

@@ -14,7 +14,7 @@ from nbclient import NotebookClient
 
 from tests.helpers import ROOT, RUNS
 
-pytestmark = [pytest.mark.lammps, pytest.mark.slow]
+pytestmark = pytest.mark.lammps
 
 # A last cell, the test's own: what the notebook computed, for the asserts here.
 REPORT = """
