@@ -21,6 +21,7 @@ import dataclasses
 import json
 import math
 import re
+import tomllib
 from fractions import Fraction
 from pathlib import Path
 
@@ -71,13 +72,23 @@ def code_defaults() -> dict[str, str]:
         respa_dt=f"{RESPA_DT:g}",
         respa_inner=f"{RESPA_DT / RESPA_NRESPA:g}",
     )
+    for study in ("paper", "demo"):  # the studies the pages describe, as their files say
+        grid = tomllib.loads((ROOT / "studies" / f"{study}.toml").read_text())["grid"]
+        text.update({f"{study}_{k}": str(v) for k, v in grid.items() if k != "lattices"})
+        text[f"{study}_lattices"] = str(len(grid["lattices"]))
     return text
 
 
 # Each phrase, filled in from code_defaults(), must be on its page.
 PHRASES = {
-    "README.md": ["the disk's motion every {series} R/c"],
+    "README.md": [
+        "the disk's motion every {series} R/c",
+        "{paper_samples} samples per point",
+    ],
     "docs/model.md": [
+        "e and beta at {paper_angles} angles",
+        "{paper_samples} samples each",
+        "normal speed v_n = {paper_vn} c",
         "a = {contact_a} / R",
         "sd delta = {roughness} R",
         "The wall is a rectangle {wall_width}R wide and {wall_height}R high",
@@ -101,6 +112,8 @@ PHRASES = {
         "above `--max-drift` (default {max_drift})",
     ],
     "docs/usage.md": [
+        "random lattice, {demo_angles} angles x {demo_samples} samples",
+        "{paper_lattices}\nlattices x {paper_angles} angles x {paper_samples} samples",
         "`--dt {dt_word}` ({dt} R/c\nat {n_disk} points",
         "`--integrator {integrator}`",
         "`--stop-rule\n{stop_rule}`",
