@@ -28,6 +28,7 @@ READINGS_KINDS = (
     "fact_sensitivity",
     "wall_width",
     "resolution",
+    "references",
 )
 KINDS = ("results", *READINGS_KINDS)
 
