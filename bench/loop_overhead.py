@@ -170,7 +170,7 @@ def commit_name(text: str) -> str:
 
 
 commit_name.__name__ = "commit"
-commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/test_bad_input.py
+commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/cli/test_bad_input.py
 
 
 def parser() -> argparse.ArgumentParser:

@@ -45,7 +45,7 @@ def roughness_length(text: str) -> float:
     return ROUGHNESS_LENGTH(text)
 
 
-# what tests/test_bad_input.py feeds it: below, above and not numbers (0 is a value)
+# what tests/cli/test_bad_input.py feeds it: below, above and not numbers (0 is a value)
 roughness_length.bad_values = ("-0.1", "0.001", "2", "nan", "abc")
 
 
@@ -74,7 +74,7 @@ def wall_spring(text: str) -> float | str:
 
 
 wall_points.__name__ = wall_spring.__name__ = "reading"
-# what each takes besides its word (tests/test_bad_input.py feeds it bad numbers)
+# what each takes besides its word (tests/cli/test_bad_input.py feeds it bad numbers)
 wall_points.numbers, wall_spring.numbers = N_WALL, WALL_KA
 
 

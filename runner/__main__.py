@@ -86,7 +86,7 @@ def study_name(text: str) -> str:
     return text
 
 
-# tests/test_bad_input.py
+# tests/cli/test_bad_input.py
 study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y", "n" * 300)
 
 
@@ -100,7 +100,7 @@ def time_step(text: str) -> float | str:
         raise argparse.ArgumentTypeError(f"must be {DT.describe()} or 'auto', got {text}") from None
 
 
-time_step.numbers = DT  # tests/test_bad_input.py feeds it bad numbers
+time_step.numbers = DT  # tests/cli/test_bad_input.py feeds it bad numbers
 
 
 def add_run_arguments(parser) -> None:

@@ -354,7 +354,7 @@ class SampleBodies:
     runs/<study>/.bodies/<host>-<pid>/, the last few kept. Only the disk's
     placement and velocity differ between a sample's impacts
     (builder.lammps_data); the restart is read in a tenth of the data file's
-    time, into the same atoms in the same order (tests/test_sample_bodies.py;
+    time, into the same atoms in the same order (tests/runner/test_sample_bodies.py;
     on one rank: on several, LAMMPS splits the box among them, and a restart
     of the unplaced bodies has another box than a placed data file)."""
 

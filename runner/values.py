@@ -8,7 +8,7 @@ too, in any position), and runner study's options take it as their type, so
 that a file and the command line refuse the same values with the same words.
 The ranges themselves are defined beside what uses them (builder.scene,
 runner.options); an option added there needs its line here
-(tests/test_refusals.py fails until it has one).
+(tests/cli/test_refusals.py fails until it has one).
 """
 
 from __future__ import annotations

@@ -23,16 +23,14 @@ import math
 import re
 import tomllib
 from fractions import Fraction
-from pathlib import Path
 
 import pytest
 
 from analysis.result import MAX_DRIFT
 from builder.scene import SceneSpec
+from ground.paths import ROOT
 from runner.options import AUTO, DEFAULT_DT, RESPA_DT, RESPA_NRESPA, SERIES_INTERVAL, RunOptions
 
-# the project's root, wherever the tests' folder sits under it
-ROOT = next(p for p in Path(__file__).resolve().parents if (p / "pyproject.toml").is_file())
 HAND_WRITTEN = (
     "README.md",
     "docs/model.md",
