@@ -21,6 +21,8 @@ from builder.study_names import (  # noqa: F401 (the readings by name live there
     MODELS,
     N_WALL,
     NAMED,
+    ONE_BODY,
+    REFERENCES,
     ROUGHNESS_LENGTH,
     WALL_FIXED,
     WALL_KA,

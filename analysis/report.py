@@ -8,9 +8,10 @@ import math
 from collections import Counter
 from pathlib import Path
 
-from builder.errors import InputError
 from builder.run_options import RUN_OPTIONS
 from builder.scene import SCENE_OPTIONS
+from ground.errors import InputError
+from ground.paths import ROOT
 
 from . import binary_findings, binary_page, figures, grazing, normal_check, speed, speed_page
 from .claims import claims
@@ -369,7 +370,7 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the folder holds no study's tables, or a row lacks a number.
     """
 
@@ -431,9 +432,8 @@ def number_text(text: str) -> str:
 
 def shown_path(path: Path) -> str:
     """A folder as the page names it: from the project's root where it is inside."""
-    root = Path(__file__).resolve().parents[1]
     path = Path(path).resolve()
-    return path.relative_to(root).as_posix() if path.is_relative_to(root) else str(path)
+    return path.relative_to(ROOT).as_posix() if path.is_relative_to(ROOT) else str(path)
 
 
 def figure_folder(page: Path, out: Path) -> Path:

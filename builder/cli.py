@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import argparse
 
+from ground.errors import InputError
+
 from .declared import Option
-from .errors import InputError
 from .scene import MODEL_READINGS, NU, SCENE, SCENE_OPTIONS
 
 

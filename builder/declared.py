@@ -21,8 +21,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
-from .checks import Range
-from .errors import InputError, require_choice
+from ground.checks import Range
+from ground.errors import InputError, require_choice
 
 # ``Option.before``'s "the default's" (None is a value).
 UNSET = object()
@@ -96,7 +96,7 @@ class Option:
         The field's default (None: see ``help``).
     help : str
         What it is, for --help; the range and the default are added.
-    numbers : builder.checks.Range, optional
+    numbers : ground.checks.Range, optional
         The numbers it takes from the command line and a study file.
     words : tuple
         The words it takes (alone, or besides ``numbers``).
@@ -111,7 +111,7 @@ class Option:
         Whether runner study takes it (a study file's [run] takes every run option).
     kind : type
         Its type, as a dataclass field's annotation says it.
-    scene_numbers : builder.checks.Range, optional
+    scene_numbers : ground.checks.Range, optional
         What the object itself accepts where wider than what a user may
         give (the code's 0 angle, a benchmark's faster scenes); default ``numbers``.
     hide_words : bool

@@ -7,7 +7,8 @@ runner and the analysis, which both read it.
 
 from __future__ import annotations
 
-from .checks import Range
+from ground.checks import Range
+
 from .declared import Option, by_name
 from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES
 

@@ -19,6 +19,7 @@ READINGS_KINDS = (
     "fact_sensitivity",
     "wall_width",
     "resolution",
+    "references",
 )
 KINDS = ("results", *READINGS_KINDS)
 # The sections a results page may have, in the order it has them
@@ -80,5 +81,18 @@ LIMITS = {
     "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
     "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
 }
+# What the disk hits in the symmetric references (analysis/references.py):
+# a second disk, its own image, that image held, a wall built like a disk's
+# surface, the default wall.
+REFERENCES = {
+    "pair": {"target": "disk", "partner": "independent"},
+    "image": {"target": "disk", "partner": "image"},
+    "image-held": {"target": "disk", "partner": "image-held"},
+    "surface": {"target": "disk", "partner": "surface"},
+    "wall": {"target": "wall", "partner": "independent"},
+}
+# The references that meet one disk, not a pair: run at half the pair's speed
+# (analysis/references.py); here, so that the kind and its page share them.
+ONE_BODY = ("image-held", "surface", "wall")
 # The named readings a study file's [scene] may give, by key.
-NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS}
+NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS, "reference": REFERENCES}

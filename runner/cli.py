@@ -8,19 +8,19 @@ from __future__ import annotations
 
 import sys
 
-from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
     add_scene_arguments,
     spec_from_args,
     validate_spec,
 )
-from builder.errors import BuildError, InputError
 from builder.scene import (
     speed_warning,
 )
+from ground.checks import InPath, OutFolder, require_out_folder
+from ground.errors import BuildError, InputError
+from ground.launch import LammpsError
 
-from .lammps_run import LammpsError
 from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
 from .stopping import Stopped, stop_on_signals
 from .study import runs_folder
@@ -90,8 +90,9 @@ def parser() -> OneLineParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from analysis.text_table import format_table
+
     from .impact import run_impact, run_scene
-    from .report import format_table
 
     args = parser().parse_args(argv)
     if isinstance(getattr(args, "preset", None), StudyFile):  # the file, and its study's name

@@ -7,7 +7,7 @@ import json
 import re
 from pathlib import Path
 
-from builder.errors import InputError
+from ground.errors import InputError
 
 from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
 from .options import (

@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import asdict, replace
 
 from builder.declared import with_options
-from builder.errors import InputError
 from builder.run_options import (  # noqa: F401 (the run's ranges and words, for the command line)
     AUTO,
     CONTACTS,
@@ -26,6 +25,7 @@ from builder.run_options import (  # noqa: F401 (the run's ranges and words, for
     STOP_RULES,
     TMAX,
 )
+from ground.errors import InputError
 
 MAX_CHUNK_TIME = 2.0  # R/c between checks at most; the shortest contacts last about 9
 # Rows of series.dat and checks for the end are spaced in time, so that a

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import json
 import os
-from pathlib import Path
+
+from ground.provenance import cpu_name, machine  # noqa: F401 (the runner's machine too)
 
 
 def record_wall_clock(study, seconds: float, counts: dict) -> None:
@@ -23,25 +24,3 @@ def record_wall_clock(study, seconds: float, counts: dict) -> None:
             "driver_cpu_seconds": round(counts.get("driver_cpu_seconds", 0.0), 2),
         }
         path.write_text(json.dumps(info, indent=1))
-
-
-def machine() -> str:
-    """The machine and LAMMPS a page's numbers were measured on, and the date."""
-    import platform
-    import re
-    import subprocess
-    from datetime import date
-
-    lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout
-    version = re.search(r"LAMMPS - (.*?) -", lmp) or re.search(r"Simulator - (.*)\n", lmp)
-    return (
-        f"{cpu_name()}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, "
-        f"LAMMPS {version.group(1).strip() if version else 'unknown'}, {date.today()}"
-    )
-
-
-def cpu_name() -> str:
-    for line in Path("/proc/cpuinfo").read_text().splitlines():
-        if line.startswith("model name"):
-            return line.split(":", 1)[1].strip()
-    return "unknown CPU"

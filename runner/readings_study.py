@@ -21,8 +21,8 @@ from pathlib import Path
 from analysis.kinds import kind_module, readings_page
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
 from analysis.sections import impact_state
-from builder.checks import require_out_folder
-from builder.errors import InputError
+from ground.checks import require_out_folder
+from ground.errors import InputError
 
 from .provenance import machine
 from .study import ROOT, runs_folder
@@ -44,7 +44,7 @@ def check_labels(described: StudyFile) -> None:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         One line naming the file and the kind.
     """
     path, kind = described.path, described.kind

@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from builder.errors import InputError
+from ground.errors import InputError
+from ground.launch import LammpsError
 
-from .lammps_run import LammpsError
 from .options import AUTO, DEFAULT_DT, RUN_OPTIONS, RunOptions
 
 # Options that apply to one integrator or contact: None means "not given",

@@ -8,11 +8,10 @@ import socket
 from dataclasses import asdict
 from pathlib import Path
 
-from builder.checks import word_problem
-from builder.errors import InputError
 from builder.lammps_data import write_bodies
-
-from .lammps_run import data_to_restart
+from ground.checks import word_problem
+from ground.errors import InputError
+from ground.launch import data_to_restart
 
 # Where a study's workers keep the bodies of the samples they run: a folder
 # per worker process under the study's folder, which the driver removes when
@@ -45,7 +44,7 @@ class SampleBodies:
 
         Raises
         ------
-        builder.errors.InputError
+        ground.errors.InputError
             If the folder's path is not one word, which LAMMPS needs.
         """
         spec = asdict(scene.spec)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from builder.errors import InputError
+from ground.errors import InputError
 
 from .study import Study
 from .study_file import STUDIES, StudyFile, read_study_file, study_path
@@ -21,7 +21,7 @@ def study_file(name_or_path: str | Path) -> StudyFile:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         For no such file, a file that is not a study's, or a file of one's
         own whose name is that of a file of studies/ (its folders and page
         would be that study's).

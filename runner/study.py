@@ -15,13 +15,15 @@ from pathlib import Path
 
 import numpy as np
 
-from builder.checks import require_out_folder, word_problem
+from builder.assembly import build_scene
 from builder.declared import with_options
-from builder.errors import InputError
 from builder.lammps_data import write_scene
 from builder.materials import STUDY_LATTICES
-from builder.outputs import NAME_MAX, runs_folder
-from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, build_scene, wall_spring_constant
+from builder.outputs import NAME_MAX
+from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, wall_spring_constant
+from ground.checks import require_out_folder, word_problem
+from ground.errors import InputError
+from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROOT too)
 
 from .folders import (
     SET_ASIDE,
@@ -35,7 +37,6 @@ from .options import RunOptions
 from .sample_bodies import SAMPLE_BODIES
 from .values import ANGLES, COT_GAMMA, SAMPLES
 
-ROOT = Path(__file__).resolve().parents[1]
 LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
 # The grid's numbers. A study larger than MAX_IMPACTS is refused with its
 # size and the time it would take at IMPACTS_PER_WORKER_MINUTE, the paper

@@ -8,13 +8,13 @@ import json
 import sys
 from pathlib import Path
 
-from builder.errors import InputError
 from builder.materials import calibrated
-from builder.outputs import runs_folder
 from builder.scene import speed_warning
+from ground.errors import InputError
+from ground.launch import STYLE_LIBRARIES
+from ground.paths import ROOT as LAMMPS_ROOT
+from ground.paths import runs_folder
 
-from .lammps_run import ROOT as LAMMPS_ROOT
-from .lammps_run import STYLE_LIBRARIES
 from .options import RUN_OPTIONS, on_ranks
 from .study import EXTENDABLE, STUDY_SCENE, Study
 from .values import ANGLES
@@ -150,7 +150,7 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         One line naming the file and what differs, for any other change (a
         record from before files were recorded has no ``source``: no check).
     """

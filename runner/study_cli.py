@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import time
 
-from builder.checks import InPath, require_out_folder
-from builder.errors import InputError
 from builder.scene import VN
+from ground.checks import InPath, require_out_folder
+from ground.errors import InputError
 
 from .cluster_args import SLURM_ONLY, add_cluster_arguments, cluster_from_args, option
 from .provenance import record_wall_clock

@@ -9,9 +9,10 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from builder.checks import require_out_folder
-from builder.errors import InputError
-from builder.outputs import require_new_page, runs_folder
+from builder.outputs import require_new_page
+from ground.checks import require_out_folder
+from ground.errors import InputError
+from ground.paths import runs_folder
 
 from .studies import all_studies, built_in_pages
 from .study import ROOT
@@ -33,7 +34,7 @@ def docs_page(args, described) -> str | None:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         For --docs where the study has no page, or with a --name that is not
         one of its readings, or a page that is another study's.
     """
@@ -84,7 +85,7 @@ def study_places(args, described: StudyFile | None) -> Places:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         For a folder the command may not write (``docs_page``, and a folder
         of runs/ that holds a study the tables would replace).
     """

@@ -27,10 +27,10 @@ from pathlib import Path
 
 from analysis.result import write_json_atomically
 from analysis.sections import impact_state
+from ground.launch import lammps_error
 
 from .folders import STARTED, prune
 from .impact import run_scene
-from .lammps_run import lammps_error
 from .study import Study
 
 # Starts of one impact that may end their worker without a LAMMPS error

@@ -2,7 +2,7 @@
 command line.
 
 Each option of a study (its grid, its scene, its run) has a ``Value`` here:
-a number in a ``builder.checks.Range``, one of some words, or either. A
+a number in a ``ground.checks.Range``, one of some words, or either. A
 study file's values are checked against it (each value of an axis too, in
 any position), and runner study's options take it as their type, so that a
 file and the command line refuse the same values with the same words. The
@@ -12,11 +12,11 @@ builder.run_options.RUN_OPTIONS); the grid is the study's own.
 
 from __future__ import annotations
 
-from builder.checks import Range
 from builder.declared import Value  # noqa: F401 (the study file's and the tests' too)
 from builder.materials import STUDY_LATTICES
 from builder.run_options import RUN_OPTIONS
 from builder.scene import ANGLE, SCENE_OPTIONS, SEED, VN
+from ground.checks import Range
 
 # The grid's own numbers (runner.study.Study.validate reads them too).
 SAMPLES = Range(1, 10_000, integer=True)

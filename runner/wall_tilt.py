@@ -28,11 +28,12 @@ import numpy as np
 from analysis.readings import markdown_table
 from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
-from builder.checks import InPath, OutFolder, Range
-from builder.errors import InputError
 from builder.scene import ANGLE
+from ground.checks import InPath, OutFolder, Range
+from ground.errors import InputError
+from ground.paths import ROOT
 
-from .impact import ROOT, run_impact
+from .impact import run_impact
 from .provenance import machine
 from .study import Study, runs_folder
 
@@ -127,7 +128,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the tables are missing or --gamma is not one of their angles.
     """
     # the default is checked here; a given folder was by its type
