@@ -8,10 +8,10 @@ import subprocess
 import sys
 from pathlib import Path
 
-from analysis.readings import markdown_table  # noqa: F401 (the benchmarks' tables)
 from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
 from builder.errors import InputError
+from pages.text import markdown_table  # noqa: F401 (the benchmarks' tables)
 from runner.study import machine, runs_folder
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -884,8 +884,9 @@ def remake_one_page(preset: str, out: Path | None) -> Path:
     committed tables; the tables of the readings it tabulates are brought to
     this version's format from themselves first. Returns the page."""
     from analysis.kinds import READINGS_KINDS
-    from analysis.report import report_from_tables, tidy_tables
+    from analysis.study_tables import tidy_tables
     from builder.outputs import require_new_page
+    from pages.report import report_from_tables
 
     from .readings_study import remake_page as remake_readings_page
     from .study import PAGE_SECTIONS, READINGS, STUDY_FILES, built_in_pages
@@ -943,7 +944,7 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
 def remake_tabulating_page(preset: str, readings: dict[str, Path]) -> None:
     """The preset's page in docs/ again from its committed tables, with the
     table of its readings."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     from .study import DOC_PAGES, PAGE_SECTIONS, ROOT
 
@@ -961,7 +962,7 @@ def remake_tabulating_page(preset: str, readings: dict[str, Path]) -> None:
 def run_one_study(args, study=None) -> int:
     """One study (``study``, if already made from ``args``): its impacts, then
     its tables and page; or its page from tables alone (--from-tables)."""
-    from analysis.report import report, report_from_tables
+    from pages.report import report, report_from_tables
 
     from .driver import run_study
     from .study import (

@@ -18,11 +18,12 @@ import argparse
 from dataclasses import asdict, replace
 from pathlib import Path
 
-from analysis.kinds import kind_module, readings_page
+from analysis.failures import impact_state
+from analysis.kinds import kind_module
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
-from analysis.sections import impact_state
 from builder.checks import require_out_folder
 from builder.errors import InputError
+from pages.kinds import readings_page
 
 from .study import ROOT, check_environment, check_source, machine, runs_folder
 from .study_file import StudyFile, axis_studies, combinations

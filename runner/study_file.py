@@ -57,10 +57,10 @@ from pathlib import Path
 
 from analysis.kinds import KINDS, READINGS_KINDS, kind_module
 from analysis.readings import NAMED
-from analysis.sections import SECTIONS as PAGE_SECTIONS
 from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
+from pages.sections import SECTIONS as PAGE_SECTIONS
 
 from .options import RANKS, RunOptions, on_ranks
 from .values import VALUES

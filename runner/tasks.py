@@ -25,8 +25,8 @@ import socket
 import time
 from pathlib import Path
 
+from analysis.failures import impact_state
 from analysis.result import write_json_atomically
-from analysis.sections import impact_state
 
 from .impact import run_scene
 from .lammps_run import lammps_error

@@ -25,12 +25,12 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.readings import markdown_table
-from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.checks import InPath, OutFolder, Range
 from builder.errors import InputError
 from builder.scene import ANGLE
+from pages.report import shown_path
+from pages.text import markdown_table
 
 from .impact import ROOT, run_impact
 from .study import Study, machine, runs_folder

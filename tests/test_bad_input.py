@@ -237,7 +237,7 @@ def no_work(monkeypatch, module) -> None:
             "runner.clusters",
             "runner.lammps_run",
             "builder.scene",
-            "analysis.report",
+            "pages.report",
             "calibration.table",
             "calibration.stretch",
             "reference.run",
