@@ -296,4 +296,3 @@ def near_side_counts(rows: list[dict]) -> list[dict]:
         entry["samples"] += 1
         entry["near_side"] += float(r["side_clearance"]) < NEAR_SIDE
     return [m for m in out.values() if m["near_side"]]
-

@@ -155,7 +155,7 @@ def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
             }
         },
     }
-    lines = section({"w": numbers}, "figures", {"two disks (this study)": check})
+    lines = section({"w": numbers}, "figures", {"two disks (this study)": check}).splitlines()
     rows = [x for x in lines if x.startswith("| ") and not x.startswith("| gamma")]
     rows = [x for x in rows if x.split(" | ")[0].lstrip("| ").replace(".", "").isdigit()]
     assert "withheld" in rows[2] and rows[2].count("withheld") == 3  # e disks, difference, verdict
