@@ -160,6 +160,8 @@ def impulse_normal(
     first, last = series[0], series[-1]
     j = impulse(series, masses)
     spin_change = 0.5 * ((last["Lz"] - first["Lz"]) + (last["tLz"] - first["tLz"]))
+    if not np.isfinite(masses[1]):  # a held target: the hold takes its share
+        spin_change = last["Lz"] - first["Lz"]
     turn = float(np.arcsin(np.clip(spin_change / (radius * np.linalg.norm(j)), -1.0, 1.0)))
     angle = float(np.arctan2(j[1], j[0])) + turn
     return np.array([np.cos(angle), np.sin(angle)]), float(np.degrees(turn))
@@ -307,6 +309,9 @@ def momentum_change(series: np.ndarray, masses: tuple[float, float], radius: flo
         about the origin: each disk's orbital r x M v plus its own spin Lz.
     """
     m_a, m_b = masses
+    # A held target (infinite mass) keeps no momentum: the changes are then
+    # what the hold took, the disk's own change, not a conservation check.
+    m_b = m_b if np.isfinite(m_b) else 0.0
 
     def totals(row):
         momentum = np.array(
@@ -347,6 +352,7 @@ def binary_energy_split(
     start, end = energies[0], energies[-1]
     first, last = series[0], series[-1]
     m_a, m_b = masses
+    m_b = m_b if np.isfinite(m_b) else 0.0  # a held target does not move
     e_in = start["ke_disk"] + start["ke_target"]
     rigid_a = 0.5 * m_a * (last["vx"] ** 2 + last["vy"] ** 2) + 0.5 * last["Lz"] ** 2 / first["Izz"]
     rigid_b = (

@@ -30,7 +30,7 @@ import numpy as np
 from .fits import Means, compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
 from .measures import measures, sliding_branch
 from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_tables
-from .table import NEAR_SIDE, NEAR_SIDE_SHARE
+from .table import NEAR_SIDE, NEAR_SIDE_SHARE, held
 from .theory import nu_for_eta, walton_beta
 
 # The paper's fits (MODEL.md sections 6 and 8).
@@ -79,6 +79,8 @@ def two_body_k(row: dict) -> float:
     disks' masses M (their points) and I = (I / M R^2) M R^2:
     K = (1/M_A + 1/M_B + R^2/I_A + R^2/I_B) / (1/M_A + 1/M_B)."""
     m_a, m_b = float(row["n_disk_points"]), float(row["n_target_points"])
+    if held(row):  # infinite mass and inertia
+        return 1.0 + 1.0 / float(row["disk_inertia_ratio"])
     r_a, r_b = float(row["disk_inertia_ratio"]), float(row["target_inertia_ratio"])
     return 1.0 + (1.0 / (r_a * m_a) + 1.0 / (r_b * m_b)) / (1.0 / m_a + 1.0 / m_b)
 

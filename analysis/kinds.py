@@ -26,6 +26,7 @@ READINGS_KINDS = (
     "fact_sensitivity",
     "wall_width",
     "resolution",
+    "references",
 )
 KINDS = ("results", *READINGS_KINDS)
 

@@ -63,8 +63,18 @@ LIMITS = {
     "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
     "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
 }
+# What the disk hits in the symmetric references (analysis/references.py):
+# a second disk, its own image, that image held, a wall built like a disk's
+# surface, the default wall.
+REFERENCES = {
+    "pair": {"target": "disk", "partner": "independent"},
+    "image": {"target": "disk", "partner": "image"},
+    "image-held": {"target": "disk", "partner": "image-held"},
+    "surface": {"target": "disk", "partner": "surface"},
+    "wall": {"target": "wall", "partner": "independent"},
+}
 # The named readings a study file's [scene] may give, by key.
-NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS}
+NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS, "reference": REFERENCES}
 
 # Choices that depart from the paper's text, for the rules' tie-break: its
 # sentence (800 points, one ka, the sides held), its c, its "displaced along

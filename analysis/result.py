@@ -157,7 +157,8 @@ def binary_result(scene: dict, run: dict, series, energies) -> dict:
     ``vibration_wall`` is the second disk's, so that a binary study's tables
     have the columns of a wall study's (what the disk hit)."""
     spec = scene["spec"]
-    masses = (scene["disk_mass"], scene["target_mass"])
+    # a held target (partner image-held) moves as an infinite mass would
+    masses = (scene["disk_mass"], math.inf if scene.get("target_held") else scene["target_mass"])
     rebound, where = binary_rebound(series, spec["radius"])
     start, end = contact_window(series)
     result = {
@@ -166,6 +167,8 @@ def binary_result(scene: dict, run: dict, series, energies) -> dict:
         "partner_lattice": spec.get("partner_lattice") or spec["lattice"],
         "seed": spec["seed"],
         "partner_seed": spec.get("partner_seed"),
+        "partner": spec.get("partner", "independent"),
+        "target_held": bool(scene.get("target_held", False)),
         "gamma_deg": spec["gamma_deg"],
         "cot_gamma": rebound.cot_gamma,
         "cot_gamma_nominal": scene["cot_gamma"],

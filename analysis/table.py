@@ -87,6 +87,8 @@ BINARY_COLUMNS = (
     "aim_offset",
     "aim_incidence_deg",
 )
+# A held second disk (partner image-held): the rows say so (analysis.estimates.two_body_k).
+HELD_COLUMNS = (*BINARY_COLUMNS, "target_held")
 
 
 # timings.csv: an impact's key and its LAMMPS seconds (runs/<name>/, and a
@@ -114,8 +116,16 @@ def rounded(value, digits: int = TABLE_DIGITS):
     return value
 
 
+def held(values: dict) -> bool:
+    """Whether a row's second disk was held (partner image-held)."""
+    return str(values.get("target_held", "")).lower() == "true"
+
+
 def table_columns(rows: list[dict]) -> tuple[str, ...]:
-    """impacts.csv's columns for these rows: a binary study's has its own too."""
+    """impacts.csv's columns for these rows: a binary study's has its own too,
+    and one whose second disk was held says so."""
+    if any(held(r) for r in rows):
+        return HELD_COLUMNS
     return BINARY_COLUMNS if any(r.get("target") == "disk" for r in rows) else COLUMNS
 
 
@@ -193,6 +203,7 @@ def row(result: dict, study_lattice: str) -> dict:
     """The table's row for one result.json."""
     values = dict(result, study_lattice=study_lattice)
     columns = BINARY_COLUMNS if values.get("target") == "disk" else COLUMNS
+    columns = HELD_COLUMNS if held(values) else columns
     out = {name: "" if values.get(name) is None else values[name] for name in columns}
     out["wall_seconds"] = values.get("wall_seconds", "")  # for timings.csv, not a column
     return out

@@ -40,7 +40,9 @@ from .scene import (
     DISK,
     DISK_INTERIOR,
     DISK_SURFACE,
+    WALL_FIXED,
     WALL_FREE,
+    WALL_HELD,
     WALL_INTERIOR,
     WALL_SURFACE,
     Scene,
@@ -62,13 +64,28 @@ TYPE_NAMES = {
     DISK_INTERIOR: "disk interior",
     WALL_SURFACE: "target disk surface",
     WALL_INTERIOR: "target disk interior",
-    5: "unused (the wall's held points)",
+    5: "held target disk interior (partner image-held)",
 }
 
 
-def partner_body(spec: SceneSpec) -> Body:
+def partner_body(spec: SceneSpec, disk: Body) -> Body:
     """The second disk: its own stream of the sample's seed, or the disk of
-    sample ``partner_seed``; the disk's lattice unless ``partner_lattice``."""
+    sample ``partner_seed``; the disk's lattice unless ``partner_lattice``.
+
+    With ``partner`` "image" it is ``disk`` turned by 180 degrees about its
+    centre: placed at the origin with the disk at c, it is the disk's point
+    image through c / 2, and with equal and opposite velocities that point
+    stays put. The collision is then symmetric (a rotation by 180 degrees
+    about it maps each disk onto the other): each meets the other's surface
+    exactly as the other meets its own, the symmetric two-body reference.
+    (A mirror image in a line would be symmetric only without tangential
+    motion: reflecting the disk in the midplane also reflects its velocity.)
+    The turn keeps the ring counter-clockwise and every spring's length.
+    """
+    if spec.partner in ("image", "image-held"):
+        return replace(disk, points=-disk.points)
+    if spec.partner == "surface":
+        return surface_ring(spec, disk.spacing)
     lattice = spec.partner_lattice or spec.lattice
     readings = (
         spec.roughness_direction,
@@ -80,6 +97,37 @@ def partner_body(spec: SceneSpec) -> Body:
         return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
     rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
     return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
+
+
+# partner "surface": the held ring's radius in R. Its curvature is a
+# twentieth of the disk's, so the contact's effective radius is 0.95 R, a
+# flat wall's R to 5 %, while the ring stays small enough to build and aim.
+SURFACE_RADIUS = 20.0
+
+
+def surface_ring(spec: SceneSpec, spacing: float) -> Body:
+    """A wall built like a disk's surface (``partner`` "surface"): a ring of
+    radius SURFACE_RADIUS R with the disk's surface spacing, each point moved
+    along the ring's normal by the disk's roughness (Gaussian, ``roughness``
+    R, correlated along the ring with ``roughness_length`` as the disk's),
+    from the sample's third stream. Only the ring: all its points are held,
+    so it needs no interior and no springs; the contact sees both sides' points,
+    as between two disks.
+    """
+    n = int(round(2.0 * np.pi * SURFACE_RADIUS / spacing))
+    arc = 2.0 * np.pi * SURFACE_RADIUS / n
+    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    radial = spec.roughness * bodies.correlated(rng.standard_normal(n), arc, spec.roughness_length)
+    angle = 2.0 * np.pi * np.arange(n) / n
+    points = (SURFACE_RADIUS + radial)[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
+    return Body(
+        points=points,
+        role=np.full(n, SURFACE),
+        springs=np.zeros((0, 2), int),
+        stiffness=np.zeros(0),
+        surface=np.arange(n),
+        spacing=arc,
+    )
 
 
 def counter_clockwise(ring: np.ndarray) -> bool:
@@ -264,7 +312,7 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     """
     R = spec.radius
     disk = sample_disk(spec)
-    target = partner_body(spec)
+    target = partner_body(spec, disk)
     partner_lattice = spec.partner_lattice or spec.lattice
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
     ka_target, target_material = spring_constant(
@@ -293,16 +341,21 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     relative = np.array([speed * np.tan(gamma), -speed])
     direction = relative / np.linalg.norm(relative)
     mass_a, mass_b = len(disk.points), len(target.points)
+    # a held target neither recoils nor gives: the disk brings all the relative velocity
+    held = spec.partner in ("image-held", "surface")
+    reduced_mass = mass_a if held else mass_a * mass_b / (mass_a + mass_b)
     reach = stand_off(
         contact_energy(spec, mass_a),
         spec.contact_a / R,
-        mass_a * mass_b / (mass_a + mass_b),
+        reduced_mass,
         speed,
         cutoff,
     )
-    offset = aim(ring_a, ring_b, direction, gamma, reach, R)
+    # the aim's scale: R, or for the surface's 20 R ring the mean of both radii
+    scale = 0.5 * (1.0 + SURFACE_RADIUS) * R if spec.partner == "surface" else R
+    offset = aim(ring_a, ring_b, direction, gamma, reach, scale)
     centre = on_grid(
-        place_projectile(ring_a, ring_b, direction, offset, R, cutoff * (1 + spec.start_gap)),
+        place_projectile(ring_a, ring_b, direction, offset, scale, cutoff * (1 + spec.start_gap)),
         quantum,
     )
     # the first contact the run will see, from where the disk is put
@@ -312,15 +365,15 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     aimed = {
         "reach": reach,
         "offset": offset,
-        "rigid_offset": 2.0 * R * float(np.sin(gamma)),
+        "rigid_offset": 2.0 * scale * float(np.sin(gamma)),
         # R/c from the start: the run's time of the first contact
         "first_touch_time": float(travel / np.linalg.norm(relative)),
         "first_touch_incidence_deg": float(
             np.degrees(np.arctan2(touch @ across, -(touch @ direction)))
         ),
     }
-    velocity_a = relative * mass_b / (mass_a + mass_b)
-    velocity_b = -relative * mass_a / (mass_a + mass_b)
+    velocity_a = relative if held else relative * mass_b / (mass_a + mass_b)
+    velocity_b = 0.0 * relative if held else -relative * mass_a / (mass_a + mass_b)
 
     disk_rest = np.setdiff1d(np.arange(len(disk.points)), disk.surface)
     target_rest = np.setdiff1d(np.arange(len(target.points)), target.surface)
@@ -332,21 +385,28 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     velocities = np.concatenate(
         [np.tile(velocity_b, (n_target, 1)), np.tile(velocity_a, (len(disk_order), 1))]
     )
+    # held: the ring keeps the surface type the contact acts on, the interior
+    # is type 5; molecule 3 is not integrated (decks/setup.lmp's mobile) and
+    # needs no springs
+    target_interior = WALL_FIXED if held else WALL_INTERIOR
     types = np.concatenate(
         [
-            np.where(target.role == SURFACE, WALL_SURFACE, WALL_INTERIOR)[target_order],
+            np.where(target.role == SURFACE, WALL_SURFACE, target_interior)[target_order],
             np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order],
         ]
     )
-    molecule = np.concatenate([np.full(n_target, TARGET), np.full(len(disk_order), DISK)])
-
+    molecule = np.concatenate(
+        [np.full(n_target, WALL_HELD if held else TARGET), np.full(len(disk_order), DISK)]
+    )
+    target_springs = target.springs[:0] if held else target.springs
     springs = np.concatenate(
         [
-            renumbered(target.springs, target_order, 0),
+            renumbered(target_springs, target_order, 0),
             renumbered(disk.springs, disk_order, n_target),
         ]
     )
-    ka = np.concatenate([ka_target * target.stiffness, ka_disk * disk.stiffness])
+    target_stiffness = target.stiffness[:0] if held else target.stiffness
+    ka = np.concatenate([ka_target * target_stiffness, ka_disk * disk.stiffness])
     scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
     n_ring_b, n_ring_a = len(target.surface), len(disk.surface)
     scene.info = binary_info(
@@ -402,6 +462,9 @@ def binary_info(
     return {
         "spec": asdict(spec),
         "target": "disk",
+        # partner image-held: the target's points are held (its mass and
+        # inertia are those of its points, but nothing moves it)
+        "target_held": spec.partner in ("image-held", "surface"),
         "units": units_info(spec, disk_material, disk_spacing, ka_disk),
         "disk_material": disk_material,
         "target_material": target_material,

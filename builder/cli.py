@@ -158,7 +158,7 @@ def add_model_arguments(group, defaults: bool = True) -> None:
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
     from .bodies import LATTICES
-    from .scene import CONTACT_SCALINGS, TARGETS
+    from .scene import CONTACT_SCALINGS, PARTNERS, TARGETS
 
     group = parser.add_argument_group("scene")
     group.add_argument(
@@ -248,6 +248,13 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         "the sample's own seed, so that each sample pairs two independent disks)",
     )
     group.add_argument(
+        "--partner",
+        choices=PARTNERS,
+        default="independent",
+        help="--target disk: independent (default), or image: the disk itself turned by 180 "
+        "degrees, which makes the collision symmetric (docs/model.md, 'Two disks')",
+    )
+    group.add_argument(
         "--contact-a",
         type=CONTACT_A,
         default=300.0,
@@ -291,6 +298,7 @@ OPTIONS = {
     "target": "--target",
     "partner_lattice": "--partner-lattice",
     "partner_seed": "--partner-seed",
+    "partner": "--partner",
     **{name: option for name, (option, _) in MODEL_OPTIONS.items()},
 }
 
@@ -334,6 +342,8 @@ def spec_from_args(args: argparse.Namespace):
         ):
             if getattr(args, name) is not None:
                 raise InputError(f"{option} applies to --target disk, got --target {args.target}")
+        if args.partner != "independent":
+            raise InputError(f"--partner applies to --target disk, got --target {args.target}")
     wall = {
         name: getattr(SceneSpec, name) if value is None else value for name, value in wall.items()
     }
@@ -353,5 +363,6 @@ def spec_from_args(args: argparse.Namespace):
         target=args.target,
         partner_lattice=args.partner_lattice,
         partner_seed=args.partner_seed,
+        partner=args.partner,
         **{name: getattr(args, name) for name in MODEL_OPTIONS},
     )

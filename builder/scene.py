@@ -90,6 +90,13 @@ WALL_HEIGHT = Range(0.5, 100.0, unit="R")
 # What a disk may hit (builder/binary.py builds the second disk), and the
 # wall's options, which a binary scene refuses rather than ignores.
 TARGETS = ("wall", "disk")
+# The second disk: independent (its own draw) or the disk's own image through
+# the midpoint of the contact (the disk turned by 180 degrees), which makes the
+# collision symmetric: each disk meets what the other meets (builder/binary.py).
+# "image-held": that image with every point held, an immovable rigid copy (no
+# recoil, no compliance), to be met at half the pair's relative speed;
+# "surface": a held, nearly flat wall built like a disk's surface (builder/binary.py).
+PARTNERS = ("independent", "image", "image-held", "surface")
 WALL_OPTIONS = ("n_wall", "wall_ka", "wall_fixed", "wall_width", "wall_height")
 
 
@@ -174,6 +181,7 @@ class SceneSpec:
     target: str = "wall"
     partner_lattice: str | None = None  # the second disk's lattice; None: the disk's
     partner_seed: int | None = None  # None: the sample's own third stream; N: sample N's disk
+    partner: str = "independent"  # "image": the disk turned by 180 degrees; PARTNERS
 
     def __post_init__(self) -> None:
         if self.n_wall is None and isinstance(self.n_disk, (int, np.integer)):
@@ -266,6 +274,8 @@ class SceneSpec:
                     raise InputError(
                         f"{name} applies to target disk (a second disk), got target wall"
                     )
+            if self.partner != SceneSpec.partner:
+                raise InputError("partner applies to target disk (a second disk), got target wall")
         else:
             for name in WALL_OPTIONS:
                 default = 2 * self.n_disk if name == "n_wall" else getattr(SceneSpec, name)
@@ -277,6 +287,14 @@ class SceneSpec:
                 require_choice("partner_lattice", self.partner_lattice, bodies.LATTICES)
             if self.partner_seed is not None:
                 SEED.check("partner_seed", self.partner_seed)
+            require_choice("partner", self.partner, PARTNERS)
+            if self.partner != "independent":
+                for name in ("partner_lattice", "partner_seed"):
+                    if getattr(self, name) is not None:
+                        raise InputError(
+                            f"{name} applies to partner independent; partner image is the "
+                            "disk's own image"
+                        )
 
     @property
     def resolution_scale(self) -> float:

@@ -20,7 +20,8 @@ def wall_options(study: dict) -> str:
     a binary study's target (it has no wall)."""
     if study.get("target") == "disk":
         partner = study.get("partner_lattice")
-        return "--target disk" + (f" --partner-lattice {partner}" if partner else "")
+        image = " --partner image" if study.get("partner") == "image" else ""
+        return "--target disk" + (f" --partner-lattice {partner}" if partner else "") + image
     n_wall = study.get("n_wall", "density")
     wall_ka = study.get("wall_ka", "same-c")
     # n_wall None: twice the disk's points, what leaving out --n-wall gives

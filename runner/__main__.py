@@ -27,6 +27,7 @@ from builder.scene import (
     CONTACT_SCALINGS,
     MODEL_READINGS,
     N_DISK,
+    PARTNERS,
     RADIUS,
     ROUGHNESS,
     TARGETS,
@@ -446,6 +447,13 @@ def add_study_arguments(study) -> None:
         default=None,
         help="--target disk: the second disk's lattice (default: the disk's)",
     )
+    scene.add_argument(
+        "--partner",
+        choices=PARTNERS,
+        default=None,
+        help="--target disk: independent (default) or image, the disk itself turned by 180 "
+        "degrees (a symmetric collision)",
+    )
     add_model_arguments(scene, defaults=False)
     scene.add_argument(
         "--max-drift",
@@ -731,6 +739,7 @@ STUDY_OPTIONS = (
     *MODEL_READINGS,
     "target",
     "partner_lattice",
+    "partner",
     "max_drift",
     "report_only",
 )

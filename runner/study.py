@@ -132,6 +132,7 @@ class Study:
     # the disk's lattice unless partner_lattice names another
     target: str = SceneSpec.target
     partner_lattice: str | None = SceneSpec.partner_lattice
+    partner: str = SceneSpec.partner  # or "image": the disk turned by 180 degrees
     options: RunOptions = field(default_factory=lambda: RunOptions(route="python"))
     # the grid its study file gave when the study was first run (study.json
     # keeps it): a file changed since is refused, not run on the old grid
@@ -292,6 +293,7 @@ class Study:
             wall_fixed=self.wall_fixed,
             target=self.target,
             partner_lattice=self.partner_lattice,
+            partner=self.partner,
             **LATTICES[job["lattice"]],
         )
 
@@ -467,6 +469,7 @@ def study_from_args(args, file: Path | None = None) -> Study:
             *MODEL_READINGS,
             "target",
             "partner_lattice",
+            "partner",
         )
         if getattr(args, key) is not None
     }

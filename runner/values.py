@@ -27,6 +27,7 @@ from builder.scene import (
     MODEL_READINGS,
     N_DISK,
     N_WALL,
+    PARTNERS,
     RADIUS,
     ROUGHNESS,
     ROUGHNESS_LENGTH,
@@ -145,6 +146,7 @@ SCENE = {
     **{name: Value(words=tuple(choices)) for name, choices in MODEL_READINGS.items()},
     "target": Value(words=TARGETS),
     "partner_lattice": Value(words=tuple(BODY_LATTICES)),
+    "partner": Value(words=PARTNERS),
 }
 # [run]: runner.options.RunOptions. every and check: 0 is the default's spacing.
 RUN = {

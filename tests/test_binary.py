@@ -11,7 +11,7 @@ import pytest
 
 from analysis.binary import apse, binary_rebound, momentum_change
 from analysis.series import BINARY_COLUMNS
-from builder.binary import counter_clockwise
+from builder.binary import SURFACE_RADIUS, counter_clockwise
 from builder.errors import InputError
 from builder.scene import DISK, SceneSpec, build_scene
 from runner.impact import run_impact
@@ -102,9 +102,90 @@ def test_partner_seed_takes_that_samples_disk():
     assert np.array_equal(paired.frame_positions[paired.molecule != DISK], disk_7)
 
 
+def test_the_image_partner_is_the_disks_point_image_through_the_midpoint():
+    scene = build_scene(SceneSpec(**{**BINARY, "seed": 4, "partner": "image", "gamma_deg": 60.0}))
+    disk = scene.positions[scene.molecule == DISK]
+    target = scene.positions[scene.molecule != DISK]
+    # the target's ring first, then its interior; the disk's likewise: the
+    # same order, so each target point is its disk point's image through c / 2
+    assert np.array_equal(target, scene.disk_centre - disk)
+    velocities = scene.velocities
+    assert np.array_equal(velocities[scene.molecule != DISK], -velocities[scene.molecule == DISK])
+
+
+def test_the_image_partners_collision_is_symmetric(tmp_path):
+    """Turned by 180 degrees about the midpoint, the scene is itself: both
+    disks end with the same spin and vibration, and opposite momenta."""
+    spec = SceneSpec(**{**BINARY, "seed": 3, "partner": "image", "gamma_deg": 50.0})
+    result = run_impact(spec, tmp_path / "image", RunOptions())
+    assert result["touches"] >= 1
+    series = np.loadtxt(tmp_path / "image" / "series.dat")
+    columns = {name: k for k, name in enumerate(BINARY_COLUMNS)}
+    end = series[-1]
+    # summation order differs between the two disks' points: round-off only
+    for own, other, sign in (("omega_z", "tomega_z", 1), ("vx", "tvx", -1), ("vy", "tvy", -1)):
+        assert end[columns[own]] == pytest.approx(sign * end[columns[other]], rel=1e-9, abs=1e-12)
+    assert result["vibration_disk"] == pytest.approx(result["vibration_target"], rel=1e-9)
+    # a binary pair of independent disks is not symmetric: the check can fail
+    other = run_impact(
+        dataclasses.replace(spec, partner="independent"), tmp_path / "pair", RunOptions()
+    )
+    assert abs(other["vibration_disk"] / other["vibration_target"] - 1) > 1e-3
+
+
+def test_a_held_image_neither_moves_nor_gives(tmp_path):
+    """partner image-held: the image's points are held (molecule 3, no
+    springs), the disk brings the whole relative velocity, and the run keeps
+    the energy while the hold takes momentum."""
+    spec = SceneSpec(
+        **{**BINARY, "seed": 3, "partner": "image-held", "gamma_deg": 50.0, "vn": 0.05}
+    )
+    scene = build_scene(spec)
+    target = scene.molecule != DISK
+    assert set(scene.molecule[target]) == {3}
+    assert not np.isin(scene.springs, np.flatnonzero(target)).any()
+    assert not scene.velocities[target].any()
+    result = run_impact(spec, tmp_path / "held", RunOptions())
+    series = np.loadtxt(tmp_path / "held" / "series.dat")
+    columns = {name: k for k, name in enumerate(BINARY_COLUMNS)}
+    for name in ("tx", "ty"):
+        assert np.ptp(series[:, columns[name]]) == 0.0
+    for name in ("tvx", "tvy", "tLz"):
+        assert not series[:, columns[name]].any()
+    assert result["vibration_target"] == 0.0 and result["target_held"]
+    assert abs(result["energy_drift"]) < 1e-3
+    # the disk's momentum reversed along the normal: the hold took (1 + e) M v_n of it
+    assert result["momentum_change"] > 0.5
+
+
+def test_the_surface_partner_is_a_held_ring_built_like_the_disks_surface(tmp_path):
+    """partner surface: a held ring of radius 20 R at the disk's surface
+    spacing, its points moved along the normal by the disk's roughness; met
+    by the disk, the line of centres at the apse and at the first touch agree
+    to within what the ring's curvature turns them by (a wall's fixed normal)."""
+    spec = SceneSpec(**{**BINARY, "seed": 5, "partner": "surface", "gamma_deg": 45.0, "vn": 0.05})
+    scene = build_scene(spec)
+    target = scene.molecule != DISK
+    ring = scene.positions[target]
+    radius = np.linalg.norm(ring, axis=1) / spec.radius
+    assert set(scene.molecule[target]) == {3} and set(scene.types[target]) == {3}
+    assert abs(np.median(radius) - SURFACE_RADIUS) < 0.01
+    assert np.std(radius) == pytest.approx(spec.roughness, rel=0.1)
+    steps = np.linalg.norm(np.diff(ring, axis=0), axis=1) / spec.radius
+    assert np.median(steps) == pytest.approx(scene.info["disk_spacing"] / spec.radius, rel=0.05)
+    result = run_impact(spec, tmp_path / "surface", RunOptions())
+    angles = [result[f"normal_angle_deg_{name}"] for name in ("apse", "first_touch")]
+    # the contact slides about v_t T = 0.05 c x 8 R/c = 0.4 R: 1.1 degrees of a 21 R orbit
+    assert np.ptp(angles) < 2.0
+    assert result["vibration_target"] == 0.0 and abs(result["energy_drift"]) < 1e-3
+
+
 @pytest.mark.parametrize(
     "changes, words",
     [
+        (dict(partner="mirror"), "partner must be one of"),
+        (dict(target="wall", partner="image"), "partner applies to target disk"),
+        (dict(partner="image", partner_seed=3), "partner_seed applies to partner independent"),
         (dict(wall_width=12.0), "wall_width applies to target wall"),
         (dict(n_wall=800), "n_wall applies to target wall"),
         (dict(target="floor"), "target must be one of"),
@@ -126,6 +207,7 @@ def test_a_binary_scene_refuses_what_does_not_apply(changes, words):
         (["--target", "disk", "--wall-ka", "1"], "--wall-ka applies to --target wall"),
         (["--partner-lattice", "random"], "--partner-lattice applies to --target disk"),
         (["--partner-seed", "3"], "--partner-seed applies to --target disk"),
+        (["--partner", "image"], "--partner applies to --target disk"),
     ],
 )
 def test_the_command_line_refuses_wall_options_for_two_disks(tmp_path, args, words):

@@ -60,8 +60,8 @@ def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
 def test_a_reading_is_a_row_of_the_page_with_what_differs(tmp_path):
     """Two readings of one synthetic study (another wall stiffness, a 0.1
     speed): one row each, naming what differs, with its own peak."""
-    from pages.text import reading_differences
     from pages.report import report_from_tables
+    from pages.text import reading_differences
 
     def rows_peaking_at(top: float) -> list[dict]:
         return impact_rows(

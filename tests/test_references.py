@@ -1,0 +1,55 @@
+"""The symmetric references' study (analysis/references.py) and its numbers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analysis import references
+from analysis.references import group_key, grouped, joint_numbers, pair_speed
+from runner.study import Study
+
+
+@pytest.mark.parametrize("reference", references.ORDER)
+def test_the_one_body_references_run_at_half_the_pairs_speed(reference):
+    study = Study("refs", target="disk", vn=0.1, speeds=(0.01, 0.2))
+    planned = references.plan({"reference": reference}, study)
+    half = reference in references.ONE_BODY
+    assert planned.vn == pytest.approx(0.05 if half else 0.1)
+    assert planned.speeds == pytest.approx((0.005, 0.1) if half else (0.01, 0.2))
+    assert pair_speed({"reference": reference, "vn": planned.speeds[1]}) == pytest.approx(0.2)
+
+
+def synthetic(reference: str, shift: float, seeds: int = 6) -> list[dict]:
+    rng = np.random.default_rng(3)
+    rows = []
+    for seed in range(1, seeds + 1):
+        disk = rng.normal(0.0, 0.05)  # the seed's own disk, shared by every reference
+        for gamma in (5.7106, 30.0, 70.0):
+            rows.append(
+                {
+                    "reference": reference,
+                    "study_lattice": "random",
+                    "lattice": "random",
+                    "seed": seed,
+                    "gamma_deg": gamma,
+                    "vn": 0.05 if reference in references.ONE_BODY else 0.1,
+                    "e": 0.9 + disk + shift,
+                    "beta": -0.5 + disk,
+                    "contact_time": 8.0 + 10 * disk + 10 * shift,
+                }
+            )
+    return rows
+
+
+def test_differences_resample_whole_seeds_of_both_references_together():
+    """Two references that differ by a constant on every seed: the difference
+    is that constant with no error, though each has the seeds' scatter."""
+    rows = synthetic("image", 0.02) + synthetic("surface", 0.0)
+    numbers = joint_numbers(grouped(rows), resamples=100)
+    a, b = group_key("image", 0.1), group_key("surface", 0.1)
+    value, error = numbers["value"], numbers["error"]
+    assert value[("d_e_normal", a, b)] == pytest.approx(0.02)
+    assert value[("d_contact_time", a, b)] == pytest.approx(0.2)
+    assert error[("d_e_normal", a, b)] < 1e-12
+    assert error[("e_normal", a)] > 1e-3  # each alone scatters with its disks
