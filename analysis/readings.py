@@ -73,6 +73,9 @@ REFERENCES = {
     "surface": {"target": "disk", "partner": "surface"},
     "wall": {"target": "wall", "partner": "independent"},
 }
+# The references that meet one disk, not a pair: run at half the pair's speed
+# (analysis/references.py); here, so that the kind and its page share them.
+ONE_BODY = ("image-held", "surface", "wall")
 # The named readings a study file's [scene] may give, by key.
 NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS, "reference": REFERENCES}
 

@@ -29,7 +29,7 @@ import numpy as np
 
 from .binary_comparison import verdict
 from .estimates import study_estimates
-from .readings import Setup
+from .readings import ONE_BODY, REFERENCES, Setup
 from .seeds import seed_bootstrap, seed_tables
 
 COLUMNS = (
@@ -68,9 +68,7 @@ COLUMNS = (
     "dt",
     "error",
 )
-# The references that meet one disk, not a pair: run at half the pair's speed.
-ONE_BODY = ("image-held", "surface", "wall")
-ORDER = ("pair", "image", "image-held", "surface", "wall")
+ORDER = tuple(REFERENCES)  # pair, image, image-held, surface, wall
 
 
 def label(choice: dict) -> str:

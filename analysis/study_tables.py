@@ -9,7 +9,7 @@ import json
 import math
 from pathlib import Path
 
-from builder.errors import InputError
+from ground.errors import InputError
 
 from . import speed
 from .failures import impact_state, state_of
@@ -72,7 +72,7 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the folder holds no study's tables, or a row lacks a number.
     """
 

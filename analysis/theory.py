@@ -17,7 +17,7 @@ stick turns to slip when |f| reaches mu n. beta = -u_end / u_0.
 compliant_beta solves this phase by phase in closed form, with the transition
 times found by root finding; compliant_beta_integrated integrates the spring
 and slider directly (a return-mapping scheme, no phase logic). They agree
-(tests/test_theory.py).
+(tests/analysis/test_theory.py).
 """
 
 from __future__ import annotations

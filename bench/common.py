@@ -8,13 +8,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
-from builder.errors import InputError
+from ground.checks import OutFolder, Range, require_out_folder
+from ground.errors import InputError
+from ground.paths import ROOT, runs_folder
+from ground.provenance import machine
 from pages.text import markdown_table  # noqa: F401 (the benchmarks' tables)
-from runner.study import machine, runs_folder
 
-ROOT = Path(__file__).resolve().parents[1]
 # Where a benchmark's page and tables go: its run folder, unless --docs asks
 # for the committed one (make bench and friends do).
 DOCS = ROOT / "docs" / "benchmarks"

@@ -32,10 +32,11 @@ from bench.common import (
     timer_seconds,
     write_report,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.launch import LammpsError, command_line
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError, command_line
 from runner.options import RunOptions
 
 CONTACTS = ("none", "pair", "segment")

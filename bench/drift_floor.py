@@ -29,16 +29,16 @@ from pathlib import Path
 import numpy as np
 
 from bench.common import bench_parser, markdown_table, output_folder, write_report
-from builder.checks import OutFolder
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import build_scene
+from ground.checks import OutFolder
+from ground.paths import runs_folder
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes
 from runner.clusters import WORKERS
 from runner.impact import run_scene
 from runner.options import RunOptions
-from runner.study import runs_folder
 
 SETTINGS = [("verlet", dt) for dt in (2e-3, 1e-3, 5e-4, 2.5e-4)]
 SETTINGS += [("suzuki", dt) for dt in (2e-3, 1e-3, 5e-4)]

@@ -27,10 +27,11 @@ import numpy as np
 
 from analysis.result import MAX_DRIFT
 from bench.common import bench_parser, distinct, markdown_table, refuse, write_report
-from builder.checks import InPath, Range
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import ANGLE, SEED, build_scene
+from builder.scene import ANGLE, SEED
+from ground.checks import InPath, Range
+from ground.errors import InputError
 from runner.impact import run_scene
 from runner.options import DT
 from runner.study import LATTICES, PRESETS

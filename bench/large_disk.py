@@ -44,12 +44,13 @@ from bench.common import (
     refuse,
     write_report,
 )
-from builder.checks import Range
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import N_WALL, Scene, SceneSpec, build_scene
+from builder.scene import N_WALL, Scene, SceneSpec
+from ground.checks import Range
+from ground.errors import InputError
+from ground.launch import run_lmp
 from runner.impact import run_scene
-from runner.lammps_run import run_lmp
 from runner.options import DEFAULT_DT, NPROCS, TMAX, RunOptions
 
 ENERGIES = ("ke_disk", "pe_disk", "ke_wall", "pe_wall", "pe_contact")

@@ -41,10 +41,11 @@ from bench.common import (
     median,
     write_report,
 )
-from builder.checks import Range
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import command_line, run_python
+from builder.scene import SceneSpec
+from ground.checks import Range
+from ground.launch import command_line, run_python
 from runner.study import PRESETS
 
 SOURCE = ROOT / "bench" / "loop_floor.c"

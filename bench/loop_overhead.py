@@ -48,10 +48,11 @@ from bench.common import (
     timer_seconds,
     write_report,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.launch import command_line
 from runner.impact import run_scene
-from runner.lammps_run import command_line
 from runner.options import DT, NRESPA
 from runner.study import PRESETS
 
@@ -169,7 +170,7 @@ def commit_name(text: str) -> str:
 
 
 commit_name.__name__ = "commit"
-commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/test_bad_input.py
+commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/cli/test_bad_input.py
 
 
 def parser() -> argparse.ArgumentParser:

@@ -22,8 +22,8 @@ import numpy as np
 
 from analysis.ensemble import impact_differences, paired_differences, summary
 from bench.common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
-from builder.checks import InPath
-from builder.errors import InputError
+from ground.checks import InPath
+from ground.errors import InputError
 
 TABLE = "docs/results/impacts.csv"
 WITHIN = 2.0  # standard errors

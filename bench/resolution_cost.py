@@ -49,11 +49,11 @@ from bench.common import (
     refuse,
     write_report,
 )
-from builder.checks import Range
-from builder.errors import InputError
 from builder.scene import N_DISK, N_WALL, SceneSpec
+from ground.checks import Range
+from ground.errors import InputError
+from ground.launch import LammpsError
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError
 from runner.options import NPROCS, RunOptions
 
 # The disk's points: a wall of twice as many must be one the builder takes.

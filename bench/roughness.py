@@ -5,7 +5,7 @@
 Builds the disk of every lattice of the study (runner/study.py LATTICES) and
 the wall of every reading (800, 1,600 points, the disk's number density;
 sides or sides and bottom held) for each seed, as the study does (the streams
-of builder.scene._sample_seeds), and reports per body and reading:
+of builder.sample.sample_seeds), and reports per body and reading:
 
 - how many seeds built, and how many needed a steep surface segment flipped
   into the triangulation (builder/network.py ``constrain``; before it, the
@@ -32,8 +32,9 @@ import numpy as np
 
 from bench.common import SEED_COUNT, bench_parser, markdown_table, refuse, write_report
 from builder import bodies
-from builder.errors import BuildError, InputError
-from builder.scene import SEED, _sample_seeds
+from builder.sample import sample_seeds
+from builder.scene import SEED
+from ground.errors import BuildError, InputError
 from runner.study import LATTICES
 
 DELTA = 0.03
@@ -100,7 +101,7 @@ def survey(seeds: range) -> list[dict]:
             # Fresh streams for every body, as builder.scene does: scipy's
             # Poisson-disk sampler spawns from the generator's SeedSequence, so
             # a second body drawn from the same SeedSequence object would differ.
-            disk_seed, wall_seed = _sample_seeds(seed)
+            disk_seed, wall_seed = sample_seeds(seed)
             rng = np.random.default_rng(disk_seed if record["kind"] == "disk" else wall_seed)
             try:
                 if record["kind"] == "disk":

@@ -24,8 +24,9 @@ from bench.common import (
     median,
     write_report,
 )
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from runner.impact import run_scene
 from runner.options import RunOptions
 

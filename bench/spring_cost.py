@@ -38,10 +38,11 @@ from bench.common import (
     refuse,
     timer_seconds,
 )
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
-from runner.lammps_run import command_line
+from builder.scene import SceneSpec
+from ground.errors import InputError
+from ground.launch import command_line
 
 STYLES = ("class2", "harmonic/quartic")
 # the default wall, the literal 800-point one and the 1,600-point one (the default before)

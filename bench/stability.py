@@ -25,12 +25,12 @@ import numpy as np
 
 from analysis.series import read_energies
 from bench.common import bench_parser, markdown_table, write_report
-from builder.lammps_data import write_scene
+from builder.assembly import build_scene
+from builder.lammps_data import read_data, write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec, build_scene
-from reference.data import read_data
+from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec
+from ground.launch import LammpsError
 from runner.impact import run_scene
-from runner.lammps_run import LammpsError
 from runner.options import DEFAULT_DT, RESPA_NRESPA, RunOptions
 
 STEPS = (1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 1.2e-2, 1.6e-2, 2.4e-2, 3.2e-2)

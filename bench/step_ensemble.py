@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from bench.common import bench_parser, markdown_table, write_report
-from builder.errors import InputError
+from ground.errors import InputError
 from runner.clusters import WORKERS
 from runner.driver import run_study
 from runner.options import DT, INTEGRATORS, NRESPA

@@ -27,10 +27,10 @@ import tempfile
 from pathlib import Path
 
 from bench.common import bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
-from builder.errors import InputError
 from builder.scene import N_DISK, SceneSpec
+from ground.errors import InputError
+from ground.launch import LammpsError
 from runner.impact import run_impact
-from runner.lammps_run import LammpsError
 from runner.options import RunOptions
 
 FACTORS = (2.0, 1.5, 1.0, 0.5)

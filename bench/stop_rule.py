@@ -23,10 +23,11 @@ from pathlib import Path
 
 from analysis.series import read_series
 from bench.common import SEED_COUNT, bench_parser, markdown_table, median, write_report
-from builder.checks import Range
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.checks import Range
 from runner.impact import run_scene
 from runner.options import DEFAULT_DT, RunOptions
 

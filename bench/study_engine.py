@@ -32,10 +32,11 @@ import time
 from pathlib import Path
 
 from bench.common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
-from builder.checks import Range
+from ground.checks import Range
+from ground.paths import runs_folder
 from runner.clusters import ClusterSpec, dask_client
 from runner.driver import job_groups
-from runner.study import ANGLES, PRESETS, SAMPLES, runs_folder
+from runner.study import ANGLES, PRESETS, SAMPLES
 
 TASKS = Range(100, 1_000_000, integer=True)
 # The partitions path's builder (issue 28, measured on this machine): 40 ms

@@ -5,12 +5,13 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .checks import OutFolder, Range
+from ground.checks import OutFolder, Range
+from ground.errors import BuildError, InputError
+
+from .assembly import build_scene
 from .cli import OneLineParser, add_scene_arguments, spec_from_args, validate_spec
 from .contact_table import POINTS, table_name, table_text
-from .errors import BuildError, InputError
 from .lammps_data import DEFAULT_SPRINGS, SPRING_STYLES, write_scene
-from .scene import build_scene
 
 # The table's numbers: a contact whose force has not died out at the table's
 # outer end, or has underflowed at its inner one, is not the model's.

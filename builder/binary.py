@@ -10,10 +10,10 @@ disk first comes within the contact's stand-off of the other's surface: the
 distance l* at which one point's contact energy V0 exp(-a l*) equals the
 approach's normal kinetic energy (1/2) mu v_n^2 (mu the reduced mass), the
 turning distance of a head-on approach, which with the rings makes the
-contact's effective diameter (``stand_off``). Until then both disks move
+contact's effective diameter (``builder.aim.stand_off``). Until then both disks move
 rigidly (the contact's energy is below a millionth of that until 0.05 R
 before the stand-off, a R being 300), so the first contact follows from their rings
-alone (``first_contact``: each point's ray against the other ring's segments
+alone (``builder.aim.first_contact``: each point's ray against the other ring's segments
 widened by the reach). Rigid circles of radius R would need the offset
 2 R sin gamma; the rough rings and the stand-off need a larger one. The
 total momentum is zero.
@@ -29,13 +29,15 @@ from __future__ import annotations
 from dataclasses import asdict, replace
 
 import numpy as np
-from scipy.optimize import brentq
+
+from ground.errors import InputError
 
 from . import bodies
+from .aim import aim, first_contact, place_projectile, stand_off
 from .bodies import SURFACE, Body
-from .errors import InputError
-from .geometry import distance_to_polyline
 from .materials import spring_constant
+from .placement import on_grid, placement_quantum, renumbered
+from .sample import sample_disk, sample_seeds
 from .scene import (
     DISK,
     DISK_INTERIOR,
@@ -47,13 +49,8 @@ from .scene import (
     WALL_SURFACE,
     Scene,
     SceneSpec,
-    _sample_seeds,
     contact_energy,
-    on_grid,
-    placement_quantum,
-    renumbered,
     require_contact_resolved,
-    sample_disk,
     speed_unit,
     units_info,
 )
@@ -95,7 +92,7 @@ def partner_body(spec: SceneSpec, disk: Body) -> Body:
     )
     if spec.partner_seed is not None:
         return sample_disk(replace(spec, lattice=lattice, seed=spec.partner_seed))
-    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    rng = np.random.default_rng(sample_seeds(spec.seed)[2])
     return bodies.make_disk(rng, lattice, spec.n_disk, spec.roughness, spec.k2_over_k1, *readings)
 
 
@@ -116,7 +113,7 @@ def surface_ring(spec: SceneSpec, spacing: float) -> Body:
     """
     n = int(round(2.0 * np.pi * SURFACE_RADIUS / spacing))
     arc = 2.0 * np.pi * SURFACE_RADIUS / n
-    rng = np.random.default_rng(_sample_seeds(spec.seed)[2])
+    rng = np.random.default_rng(sample_seeds(spec.seed)[2])
     radial = spec.roughness * bodies.correlated(rng.standard_normal(n), arc, spec.roughness_length)
     angle = 2.0 * np.pi * np.arange(n) / n
     points = (SURFACE_RADIUS + radial)[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
@@ -136,178 +133,18 @@ def counter_clockwise(ring: np.ndarray) -> bool:
     return float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) > 0.0
 
 
-def gap_between(ring_a: np.ndarray, ring_b: np.ndarray) -> float:
-    """Least distance of either ring's points to the other closed ring."""
-    return float(
-        min(
-            distance_to_polyline(ring_a, ring_b, closed=True).min(),
-            distance_to_polyline(ring_b, ring_a, closed=True).min(),
-        )
-    )
-
-
-def entry(points: np.ndarray, ring: np.ndarray, direction: np.ndarray, reach: float) -> float:
-    """How far ``points`` move along ``direction`` (a unit vector) before the
-    first of them comes within ``reach`` of the closed polyline ``ring``: the
-    first entry of each point's ray into any segment's capsule (the segment
-    widened by ``reach``: its slab between the ends, or a circle at a vertex).
-
-    Returns
-    -------
-    float
-        The distance; inf if no point comes that close, 0 if one already is.
-    """
-    start, end = ring, np.roll(ring, -1, axis=0)
-    along = end - start
-    length = np.linalg.norm(along, axis=1)
-    unit = along / length[:, None]
-    side = np.column_stack([-unit[:, 1], unit[:, 0]])
-    w = points[:, None, :] - start[None, :, :]  # (points, segments, 2)
-    height = np.einsum("psk,sk->ps", w, side)
-    approach = side @ direction  # (segments,)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s_slab = (np.sign(height) * reach - height) / approach[None, :]
-    foot_now = np.einsum("psk,sk->ps", w, unit)
-    foot = foot_now + s_slab * (unit @ direction)[None, :]
-    slab = np.where(
-        (np.abs(height) > reach) & (s_slab >= 0) & (foot >= 0) & (foot <= length[None, :]),
-        s_slab,
-        np.inf,
-    )
-    # the circles at the vertices (each vertex starts one segment)
-    b = w @ direction
-    c = np.einsum("psk,psk->ps", w, w) - reach * reach
-    disc = b * b - c
-    with np.errstate(invalid="ignore"):
-        s_circle = -b - np.sqrt(disc)
-    circle = np.where((disc >= 0) & (s_circle >= 0), s_circle, np.inf)
-    inside = (c <= 0) | (
-        (np.abs(height) <= reach) & (foot_now >= 0) & (foot_now <= length[None, :])
-    )
-    if inside.any():
-        return 0.0
-    return float(min(slab.min(), circle.min()))
-
-
-def first_contact(
-    ring_a: np.ndarray, ring_b: np.ndarray, centre: np.ndarray, direction: np.ndarray, reach: float
-) -> float:
-    """How far the disk (``ring_a`` about its centre, now at ``centre``) moves
-    along ``direction`` before the rings first come within ``reach`` of each
-    other, either ring's points against the other's segments (inf if never)."""
-    return min(
-        entry(ring_a + centre, ring_b, direction, reach),
-        entry(ring_b, ring_a + centre, -direction, reach),
-    )
-
-
-def incidence(
-    ring_a: np.ndarray,
-    ring_b: np.ndarray,
-    direction: np.ndarray,
-    offset: float,
-    reach: float,
-    radius: float,
-) -> float:
-    """Angle of incidence (radians) at the first touch of the disk coming
-    along ``direction`` on the line ``offset`` from the target's centre: the
-    angle from the relative velocity's reverse to the line of centres there,
-    positive towards the offset's side; pi / 2 if the disk passes by."""
-    across = np.array([-direction[1], direction[0]])
-    start = offset * across - 4.0 * radius * direction
-    distance = first_contact(ring_a, ring_b, start, direction, reach)
-    if not np.isfinite(distance):
-        return float(np.copysign(np.pi / 2, offset))
-    centre = start + distance * direction
-    return float(np.arctan2(centre @ across, -(centre @ direction)))
-
-
-def aim(
-    ring_a: np.ndarray,
-    ring_b: np.ndarray,
-    direction: np.ndarray,
-    gamma: float,
-    reach: float,
-    radius: float,
-) -> float:
-    """The offset of the line of motion from the target's centre that makes
-    the first touch (at ``reach``) happen at the incidence ``gamma`` (radians):
-    the root of ``incidence`` - gamma, which rises with the offset."""
-    if gamma == 0.0:
-        return 0.0
-
-    def miss(offset: float) -> float:
-        return incidence(ring_a, ring_b, direction, offset, reach, radius) - gamma
-
-    tolerance = 1e-10 * radius  # 5e-11 rad of incidence at 86 degrees
-    # the contact's diameter is within 1.9 R and 2.3 R (roughness and reach
-    # well below R / 10): the root is between those lines, else anywhere
-    low, high = 1.9 * radius * np.sin(gamma), min(2.3 * radius * np.sin(gamma), 3.0 * radius)
-    if not miss(low) < 0.0 < miss(high):
-        low, high = -3.0 * radius, 3.0 * radius
-    root = float(brentq(miss, low, high, xtol=tolerance))
-    # Where another asperity takes over first, the incidence jumps across
-    # gamma (or to a miss, pi / 2): of the lines just either side of the jump,
-    # the one whose incidence is nearer gamma, among those on which the rings meet.
-    sides = [root + k * tolerance for k in (-4.0, 4.0)]
-    meeting = [b for b in sides if abs(miss(b) + gamma) < np.pi / 2 - 1e-12]
-    if not meeting:
-        raise RuntimeError("the aim found no line on which the disks meet")
-    return min(meeting, key=lambda b: abs(miss(b)))
-
-
-def stand_off(v0: float, a: float, reduced_mass: float, speed: float, cutoff: float) -> float:
-    """The distance at which one point's contact energy V0 exp(-a l) equals
-    the normal kinetic energy of the approach, (1/2) mu v_n^2, within (0, cutoff].
-
-    Parameters
-    ----------
-    v0 : float
-        The contact's V0.
-    a : float
-        Its decay rate, 1/length.
-    reduced_mass : float
-        M_A M_B / (M_A + M_B).
-    speed : float
-        The relative normal speed v_n.
-    cutoff : float
-        The contact's cutoff.
-    """
-    energy = 0.5 * reduced_mass * speed * speed
-    return float(np.clip(np.log(v0 / energy) / a, 1e-9 * cutoff, cutoff))
-
-
-def place_projectile(
-    ring_a: np.ndarray,
-    ring_b: np.ndarray,
-    direction: np.ndarray,
-    offset: float,
-    radius: float,
-    gap: float,
-) -> np.ndarray:
-    """Centre of the disk (ring ``ring_a`` about its centre) at ``gap`` from
-    the target (``ring_b`` about the origin), on the line along ``direction``
-    at ``offset`` from the target's centre."""
-    across = np.array([-direction[1], direction[0]])
-    start = offset * across - 4.0 * radius * direction
-    distance = first_contact(ring_a, ring_b, start, direction, gap)
-    if not np.isfinite(distance) or distance == 0.0:
-        raise InputError("the disks do not meet on the aimed line: the roughness exceeds R / 2")
-    return start + distance * direction
-
-
 def build_binary_scene(spec: SceneSpec) -> Scene:
     """Build, scale and place both disks of a binary scene (``target`` disk).
 
     Parameters
     ----------
     spec : SceneSpec
-        The scene; validated by ``builder.scene.build_scene``.
+        The scene; validated by ``builder.assembly.build_scene``.
 
     Returns
     -------
     Scene
-        As ``builder.scene.build_scene``'s; ``info`` has ``target`` "disk" and
+        As ``builder.assembly.build_scene``'s; ``info`` has ``target`` "disk" and
         both disks' masses, moments of inertia and rings.
     """
     R = spec.radius

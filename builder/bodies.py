@@ -15,7 +15,8 @@ import numpy as np
 from scipy.spatial import Delaunay
 from scipy.stats import qmc
 
-from .errors import BuildError, InputError
+from ground.errors import BuildError, InputError
+
 from .geometry import Polyline, inside_polygon
 from .network import triangulate_body, unique_edges
 from .sample_cache import cached_draw

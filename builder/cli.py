@@ -1,6 +1,6 @@
 """The scene's command-line options, shared by the builder, the runner and the study.
 
-Every value goes through builder.checks: a number outside its range, a
+Every value goes through ground.checks: a number outside its range, a
 non-finite one or an unknown choice is refused with one line that names the
 option and what it may be, exit status 2, before anything is written.
 """
@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import argparse
 
-from .errors import InputError
+from ground.errors import InputError
+
 from .scene import (
     ANGLE,
     CONTACT_A,
@@ -44,7 +45,7 @@ def roughness_length(text: str) -> float:
     return ROUGHNESS_LENGTH(text)
 
 
-# what tests/test_bad_input.py feeds it: below, above and not numbers (0 is a value)
+# what tests/cli/test_bad_input.py feeds it: below, above and not numbers (0 is a value)
 roughness_length.bad_values = ("-0.1", "0.001", "2", "nan", "abc")
 
 
@@ -73,7 +74,7 @@ def wall_spring(text: str) -> float | str:
 
 
 wall_points.__name__ = wall_spring.__name__ = "reading"
-# what each takes besides its word (tests/test_bad_input.py feeds it bad numbers)
+# what each takes besides its word (tests/cli/test_bad_input.py feeds it bad numbers)
 wall_points.numbers, wall_spring.numbers = N_WALL, WALL_KA
 
 

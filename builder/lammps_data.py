@@ -1,4 +1,5 @@
-"""LAMMPS data files (atom_style bond, 2-D) and the scene's settings for the deck.
+"""LAMMPS data files (atom_style bond, 2-D), written and read, and the scene's
+settings for the deck.
 
 Every spring gets its own bond type, so that each keeps its own natural
 length. Numbers are written in Python's shortest round-trip form, so LAMMPS
@@ -10,16 +11,19 @@ from __future__ import annotations
 
 import json
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from ground.paths import BUILD
 
 from .contact_table import ensure_table, table_name
 from .scene import DISK, Scene
 
 # Decks run from the project's root and find the contact tables here: derived
 # files, made when first needed, so under build/ and not in the source tree.
-TABLES = Path(__file__).resolve().parents[1] / "build" / "tables"
+TABLES = BUILD / "tables"
 
 SPRING_STYLES = ("harmonic/quartic", "class2", "harmonic")
 # The project's own bond style (potentials/bond_harmonic_quartic.cpp): the same
@@ -228,7 +232,7 @@ def write_scene(
     Parameters
     ----------
     scene : Scene
-        A built scene (``builder.scene.build_scene``).
+        A built scene (``builder.assembly.build_scene``).
     folder : pathlib.Path or str
         The run folder; created if missing.
     springs : str
@@ -249,3 +253,94 @@ def write_scene(
     (folder / "scene.lmp").write_text(settings_text(scene, springs, bodies, restart))
     (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")
     return folder
+
+
+# Reading: what LAMMPS would read from a data file of this project, as arrays
+# (the reference implementation integrates them; calibration counts atoms).
+
+
+@dataclass
+class System:
+    """Everything the dynamics needs, indexed by atom ID - 1."""
+
+    x: np.ndarray  # (n, 2) positions
+    v: np.ndarray  # (n, 2) velocities
+    mass: np.ndarray  # (n,)
+    types: np.ndarray  # (n,)
+    molecule: np.ndarray  # (n,)
+    bonds: np.ndarray  # (m, 2) atom indices
+    r0: np.ndarray  # (m,) natural lengths
+    k2: np.ndarray  # (m,) class2 coefficients: E = k2 dr^2 + k3 dr^3 + k4 dr^4
+    k3: np.ndarray
+    k4: np.ndarray
+
+
+def _sections(text: str) -> dict[str, list[str]]:
+    sections, name = {"header": []}, "header"
+    for line in text.splitlines():
+        stripped = line.split("#")[0].strip()
+        if not stripped:
+            continue
+        if stripped in ("Masses", "Bond Coeffs", "Atoms", "Velocities", "Bonds"):
+            name = stripped
+            sections[name] = []
+        else:
+            sections[name].append(stripped)
+    return sections
+
+
+def read_data(path: Path | str) -> System:
+    """A System from a data file; raises FileNotFoundError or ValueError.
+
+    Parameters
+    ----------
+    path : pathlib.Path or str
+        A LAMMPS data file of this project (scene.data, strip.data): atom style
+        bond, class2 or harmonic bonds.
+
+    Returns
+    -------
+    System
+        Positions, velocities, masses, types, molecules and springs, indexed by
+        atom ID - 1.
+    """
+    sections = _sections(Path(path).read_text())
+    for needed in ("Masses", "Atoms", "Bonds", "Bond Coeffs"):
+        if needed not in sections:
+            raise ValueError(f"{path}: no {needed} section")
+    masses = {int(r.split()[0]): float(r.split()[1]) for r in sections["Masses"]}
+    atoms = np.array([r.split() for r in sections["Atoms"]], float)
+    order = np.argsort(atoms[:, 0])
+    atoms = atoms[order]
+    n = len(atoms)
+    if not np.array_equal(atoms[:, 0], np.arange(1, n + 1)):
+        raise ValueError(f"{path}: atom IDs must be 1..{n}")
+    types = atoms[:, 2].astype(int)
+    v = np.zeros((n, 2))
+    if "Velocities" in sections:
+        vel = np.array([r.split() for r in sections["Velocities"]], float)
+        v[vel[:, 0].astype(int) - 1] = vel[:, 1:3]
+    coeffs = np.array([r.split() for r in sections["Bond Coeffs"]], float)
+    coeffs = coeffs[np.argsort(coeffs[:, 0])]
+    if coeffs.shape[1] == 4:  # harmonic/quartic: r0 ka kb, class2 with ka/2, 0, kb/4
+        zero = np.zeros(len(coeffs))
+        coeffs = np.column_stack(
+            [coeffs[:, 0], coeffs[:, 1], coeffs[:, 2] / 2.0, zero, coeffs[:, 3] / 4.0]
+        )
+    elif coeffs.shape[1] == 3:  # harmonic: K r0, i.e. class2 with K3 = K4 = 0
+        zero = np.zeros(len(coeffs))
+        coeffs = np.column_stack([coeffs[:, 0], coeffs[:, 2], coeffs[:, 1], zero, zero])
+    bonds = np.array([r.split() for r in sections["Bonds"]], int)
+    kind = bonds[:, 1] - 1
+    return System(
+        x=atoms[:, 3:5].copy(),
+        v=v,
+        mass=np.array([masses[t] for t in types]),
+        types=types,
+        molecule=atoms[:, 1].astype(int),
+        bonds=bonds[:, 2:4] - 1,
+        r0=coeffs[kind, 1],
+        k2=coeffs[kind, 2],
+        k3=coeffs[kind, 3],
+        k4=coeffs[kind, 4],
+    )

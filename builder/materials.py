@@ -15,9 +15,10 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from .errors import InputError
+from ground.errors import InputError
+from ground.paths import ROOT
 
-TABLE = Path(__file__).resolve().parents[1] / "calibration" / "materials.json"
+TABLE = ROOT / "calibration" / "materials.json"
 
 
 def square_poisson_ratio(k2_over_k1: float, angle_deg: float = 0.0) -> float:
@@ -96,7 +97,7 @@ def square_ratio_for_poisson(nu: float, angle_deg: float = 0.0) -> float:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If no ratio gives ``nu`` along that direction.
     """
     low, high = 1e-6, 1e3
@@ -139,7 +140,7 @@ def calibrated(
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the lattice is not in the table (``python -m calibration run``).
     """
     ratio = k2_over_k1 if lattice == "square" else None

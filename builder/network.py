@@ -17,7 +17,8 @@ from collections import deque
 import numpy as np
 from scipy.spatial import Delaunay
 
-from .errors import BuildError
+from ground.errors import BuildError
+
 from .geometry import inside_polygon
 
 # Two triangles are flipped to the other diagonal only if the opposite point is

@@ -1,52 +1,27 @@
 """Where the project's commands may write: one rule for every entry point.
 
-- A folder a command writes into (``--out``, a study's ``--name`` under the
-  runs' folder, ``$IMPACT_RUNS``) is checked where it really is, with every
-  symbolic link resolved: it must not be inside the committed record (docs/,
-  studies/) or the code (the packages, decks/, potentials/, ...), which only
-  ``--docs`` and the project's own make targets write.
+- A folder a command writes into is checked where it really is: not inside
+  the committed record or the code (ground.paths.protected_problem).
 - A study file names its page by a plain name (``page_problem``), never a
   path; it writes docs/<page>.md, docs/<page>/ and docs/figures/<page>/ only.
 - A page in docs/ belongs to one study: a study file in studies/ owns its page
   and the readings its page tabulates; a study file of one's own may make a
   new page only where no committed page has that name (``page_owner``).
 
-builder.checks.OutFolder and require_out_folder apply the first rule to every
+ground.checks.OutFolder and require_out_folder apply the first rule to every
 ``--out``; runner applies the others.
 """
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
 from collections.abc import Mapping
 from pathlib import Path
 
-from .errors import InputError
+from ground.errors import InputError
+from ground.paths import DOCS, ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
-DOCS = ROOT / "docs"
-# The project's folders that no --out, --name or $IMPACT_RUNS may point into:
-# the committed record, the code, and what make setup builds.
-PROTECTED = (
-    "docs",
-    "studies",
-    "builder",
-    "analysis",
-    "runner",
-    "reference",
-    "calibration",
-    "bench",
-    "decks",
-    "potentials",
-    "notebooks",
-    "tests",
-    "build",
-    ".git",
-    ".venv",
-    ".venv-pypi",
-)
 # A page's name: one plain word, which stays a file name in docs/ whatever
 # joins it (no separator, no '..', nothing LAMMPS reads). The tables of a
 # reading (docs/<reading>/, a study's --name) may have dots between words
@@ -67,41 +42,6 @@ def page_problem(name: object, tables: bool = False) -> str | None:
     if len(name.encode()) > NAME_MAX - len(".md"):
         return f"must be at most {NAME_MAX - len('.md')} characters"
     return None
-
-
-def protected_problem(path: Path | str) -> str | None:
-    """Why a command may not write into ``path``, or None.
-
-    The path is resolved first (every symbolic link on it followed, also of
-    the parts that do not exist yet), so that a link cannot lead a write
-    into the project's record or code.
-    """
-    where = Path(path).expanduser().resolve()
-    if where == ROOT:
-        return "is the project's root; give a folder of its own (runs/<name>)"
-    for name in PROTECTED:
-        folder = (ROOT / name).resolve()
-        if where == folder or where.is_relative_to(folder):
-            shown = "" if where == Path(path).expanduser().absolute() else f" (it leads to {where})"
-            what = "the committed record" if name in ("docs", "studies") else "the project's own"
-            hint = "; only --docs writes docs/" if name == "docs" else ""
-            return f"is inside {name}/, {what}{shown}{hint}"
-    return None
-
-
-def runs_folder() -> Path:
-    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
-    cluster's scratch space; the tests' temporary folder).
-
-    Raises
-    ------
-    builder.errors.InputError
-        If $IMPACT_RUNS points into the project's record or code.
-    """
-    folder = Path(os.environ.get("IMPACT_RUNS") or ROOT / "runs")
-    if problem := protected_problem(folder):
-        raise InputError(f"IMPACT_RUNS: {folder} {problem}")
-    return folder
 
 
 def committed(*paths: Path) -> list[str]:
@@ -153,7 +93,7 @@ def require_new_page(
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         One line naming the file, the page and whose it is.
     """
     if problem := page_problem(page, tables=True):

@@ -26,7 +26,9 @@ from pathlib import Path
 import numpy as np
 import scipy
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[1] / "build" / "poisson"
+from ground.paths import BUILD
+
+DEFAULT_FOLDER = BUILD / "poisson"
 
 
 def cache_folder() -> Path | None:

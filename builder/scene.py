@@ -7,16 +7,14 @@ wall normal is +y; the disk moves with velocity (v_n tan gamma, -v_n).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
-from functools import lru_cache
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ground.checks import Range
+from ground.errors import InputError, require_choice
+
 from . import bodies
-from .bodies import SURFACE, Body
-from .checks import Range
-from .errors import InputError, require_choice
-from .geometry import Polyline
 from .materials import spring_constant
 
 # LAMMPS atom types.
@@ -332,20 +330,6 @@ class SceneSpec:
         return int(round(density * self.wall_width * self.wall_height))
 
 
-def placement_quantum(radius: float) -> float:
-    """The grid of the disk's points in its own frame and of its placement: a
-    power of two near radius * 2**-40 (about 1e-12 R). Points and offsets on
-    one such grid, below 2**12 R, add exactly in binary, so the disk placed by
-    LAMMPS (displace_atoms) is bit for bit the disk placed here, and every
-    spring's length is the same double in either frame."""
-    return 2.0 ** (math.floor(math.log2(radius)) - 40)
-
-
-def on_grid(values: np.ndarray, quantum: float) -> np.ndarray:
-    """``values`` rounded to multiples of ``quantum`` (exact: a power of two)."""
-    return np.round(np.asarray(values) / quantum) * quantum
-
-
 @dataclass
 class Scene:
     """Atoms and springs of a scene, in LAMMPS order, with its metadata."""
@@ -431,101 +415,6 @@ def contact_energy(spec: SceneSpec, disk_points: int) -> float:
     return energy * spec.resolution_scale if spec.contact_scaling == "spacing" else energy
 
 
-def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
-    """The disk and the wall of a sample, in units of R; independent of the angle.
-
-    Cached, because a sweep builds the same sample for every angle, and the
-    wall, which depends on the seed only, for every lattice of that seed.
-
-    Parameters
-    ----------
-    spec : SceneSpec
-        The scene; only its lattice, seed, sizes and roughness matter here.
-
-    Returns
-    -------
-    disk, wall : Body
-        Points, springs and surfaces of each body, unscaled and unplaced.
-    """
-    return (
-        sample_disk(spec),
-        _wall(
-            spec.seed,
-            spec.wall_points,
-            spec.wall_width,
-            spec.wall_height,
-            spec.roughness,
-            spec.wall_fixed,
-            spec.roughness_direction,
-            spec.roughness_length,
-        ),
-    )
-
-
-def _sample_seeds(seed: int) -> tuple[np.random.SeedSequence, ...]:
-    """Independent streams for the disk, the wall and the second disk of one
-    sample (a child's stream depends on its index only, so the disk and the
-    wall are those of the two streams this drew before the second disk)."""
-    return tuple(np.random.SeedSequence(seed).spawn(3))
-
-
-@lru_cache(maxsize=8)
-def _disk(lattice, seed, n_disk, roughness, k2_over_k1, *readings) -> Body:
-    rng = np.random.default_rng(_sample_seeds(seed)[0])
-    return bodies.make_disk(rng, lattice, n_disk, roughness, k2_over_k1, *readings)
-
-
-@lru_cache(maxsize=4)
-def _wall(seed, n_wall, width, height, roughness, wall_fixed, *readings) -> Body:
-    rng = np.random.default_rng(_sample_seeds(seed)[1])
-    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed, *readings)
-
-
-def place_disk(
-    disk_surface: np.ndarray,
-    wall_row: np.ndarray,
-    velocity: np.ndarray,
-    target_gap: float,
-    contact_x: float,
-) -> np.ndarray:
-    """Centre of the disk such that it is ``target_gap`` from the wall's surface.
-
-    The disk starts high enough to clear every asperity, a little upstream so
-    that it first comes into range near ``contact_x``, and then moves along its
-    velocity until its closest point is ``target_gap`` from the wall's
-    polyline. Each step moves the disk by its current excess distance, which no
-    point can overshoot (sphere tracing).
-    """
-    direction = velocity / np.linalg.norm(velocity)
-    touch = -disk_surface[:, 1].min() + target_gap  # centre height at contact
-    wall_top = wall_row[:, 1].max()
-    safe = wall_top + touch + target_gap  # no point in range up here
-    centre = np.array([contact_x, touch]) - direction * (safe - touch) / -direction[1]
-    lowest = np.argsort(disk_surface[:, 1])[:8]
-    wall = Polyline(wall_row)  # searched near each point only
-    for _ in range(10000):
-        points = disk_surface + centre
-        # Only points that may be nearest: a point is at least its height over
-        # the wall's top from the wall, and the lowest few bound the nearest
-        # distance from above. The same distances, minimum and centre, for a
-        # fraction of the points.
-        bound = wall.distance(points[lowest]).min()
-        near = points[:, 1] - wall_top <= bound
-        excess = wall.distance(points[near]).min() - target_gap
-        if excess < 1e-9 * target_gap:
-            return centre
-        centre = centre + excess * direction
-    raise RuntimeError("disk placement did not converge")
-
-
-def renumbered(springs: np.ndarray, order: np.ndarray, offset: int) -> np.ndarray:
-    """A body's springs in the scene's atom order: atom ``order[k]`` of the
-    body becomes atom ``offset + k``; each spring's ends in increasing order."""
-    new_index = np.empty(len(order), int)
-    new_index[order] = np.arange(len(order)) + offset
-    return np.sort(new_index[springs], axis=1)
-
-
 def units_info(spec: SceneSpec, disk_material: dict, disk_spacing: float, ka_disk: float) -> dict:
     """scene.json's units: R, c, m, where c comes from, and the unit of vn."""
     return {
@@ -540,176 +429,4 @@ def units_info(spec: SceneSpec, disk_material: dict, disk_spacing: float, ka_dis
         f"+- {disk_material['c2_se']:.1g} ({disk_material['samples']} strips)",
         # what vn is in units of: c, or the springs' d sqrt(ka / m) (spec.speed_unit)
         "vn_unit": speed_unit(spec, disk_spacing, ka_disk),
-    }
-
-
-def sample_disk(spec: SceneSpec) -> Body:
-    """The sample's disk, unscaled and unplaced (cached: ``_disk``)."""
-    return _disk(
-        spec.lattice,
-        spec.seed,
-        spec.n_disk,
-        spec.roughness,
-        spec.k2_over_k1,
-        spec.roughness_direction,
-        spec.surface_row,
-        spec.regular_surface,
-        spec.roughness_length,
-    )
-
-
-def build_scene(spec: SceneSpec) -> Scene:
-    """Build, scale and place both bodies of a scene.
-
-    Parameters
-    ----------
-    spec : SceneSpec
-        The scene: lattice, seed, angle, speed, sizes, contact; validated first.
-
-    Returns
-    -------
-    Scene
-        Atoms (positions, velocities, types, molecules) and springs in LAMMPS
-        order, and ``info``, the derived quantities scene.json holds.
-
-    Raises
-    ------
-    builder.errors.InputError
-        If ``spec`` is invalid or its lattice is not calibrated.
-    """
-    spec.validate()
-    if spec.target == "disk":
-        from .binary import build_binary_scene  # it builds on this module
-
-        return build_binary_scene(spec)
-    R = spec.radius
-    disk, wall = build_bodies(spec)
-
-    ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
-    ka_wall, ka_reference, wall_material = wall_spring_constant(spec)
-    cutoff = wall.spacing * R
-    gamma = np.radians(spec.gamma_deg)
-    speed = spec.vn * speed_unit(spec, disk.spacing * R, ka_disk)
-    if speed >= 1.0:
-        raise InputError(
-            f"vn must make the normal speed below c; vn {spec.vn:g} in units of the springs' "
-            f"sound speed is {speed:.3f} c"
-        )
-    velocity = np.array([speed * np.tan(gamma), -speed])
-
-    # Centre the sliding contact on the wall, but keep the disk clear of its sides.
-    reach = spec.wall_width / 2.0 - 1.5
-    contact_x = -np.clip(0.5 * velocity[0] * spec.contact_time_guess, 0.0, reach) * R
-    wall_row = wall.points[wall.surface] * R
-    quantum = placement_quantum(R)
-    disk_points = on_grid(disk.points * R, quantum)
-    centre = on_grid(
-        place_disk(
-            disk_points[disk.surface],
-            wall_row,
-            velocity,
-            cutoff + spec.start_gap * cutoff,
-            contact_x,
-        ),
-        quantum,
-    )
-
-    # Atom order: the wall's surface row first, left to right, so that
-    # consecutive tags are neighbours on the contact polyline; then the rest of
-    # the wall, the disk's surface row and the disk's interior.
-    row = wall.surface[wall.role[wall.surface] == SURFACE]
-    wall_rest = np.setdiff1d(np.arange(len(wall.points)), row)
-    disk_rest = np.setdiff1d(np.arange(len(disk.points)), disk.surface)
-    wall_order = np.concatenate([row, wall_rest])
-    disk_order = np.concatenate([disk.surface, disk_rest])
-    n_wall = len(wall_order)
-
-    wall_types = np.choose(wall.role, [WALL_SURFACE, WALL_INTERIOR, WALL_FIXED])[wall_order]
-    disk_types = np.where(disk.role == SURFACE, DISK_SURFACE, DISK_INTERIOR)[disk_order]
-    positions = np.concatenate([wall.points[wall_order] * R, disk_points[disk_order] + centre])
-    velocities = np.zeros_like(positions)
-    velocities[n_wall:] = velocity
-
-    springs = np.concatenate(
-        [renumbered(wall.springs, wall_order, 0), renumbered(disk.springs, disk_order, n_wall)]
-    )
-    ka = np.concatenate([ka_wall * wall.stiffness, ka_disk * disk.stiffness])
-    types = np.concatenate([wall_types, disk_types])
-    held = wall.held if wall.held is not None else np.zeros(len(wall.points), bool)
-    molecule = np.concatenate(
-        [np.where(held[wall_order], WALL_HELD, WALL_FREE), np.full(len(disk_order), DISK)]
-    )
-
-    scene = Scene(spec, positions, velocities, types, molecule, springs, ka, disk_centre=centre)
-    scene.info = scene_info(
-        scene,
-        disk,
-        wall,
-        ka_disk,
-        ka_wall,
-        ka_reference,
-        cutoff,
-        disk_material,
-        wall_material,
-        velocity,
-        len(row),
-    )
-    return scene
-
-
-def scene_info(
-    scene: Scene,
-    disk: Body,
-    wall: Body,
-    ka_disk: float,
-    ka_wall: float,
-    ka_reference: float,
-    cutoff: float,
-    disk_material: dict,
-    wall_material: dict,
-    velocity: np.ndarray,
-    n_row: int,
-) -> dict:
-    """Derived quantities that a run and its analysis need."""
-    spec = scene.spec
-    R = spec.radius
-    in_disk = scene.molecule == DISK
-    disk_xy = scene.positions[in_disk]
-    com = disk_xy.mean(axis=0)  # all points have mass 1
-    inertia = float(((disk_xy - com) ** 2).sum())
-    lengths = scene.natural_lengths
-    row = scene.positions[:n_row]
-    longest_segment = float(np.linalg.norm(np.diff(row, axis=0), axis=1).max())
-    a = spec.contact_decay
-    return {
-        "spec": asdict(spec),
-        "units": units_info(spec, disk_material, disk.spacing * R, ka_disk),
-        "disk_material": disk_material,
-        "wall_material": wall_material,
-        "n_atoms": int(len(scene.positions)),
-        "n_disk_points": int(in_disk.sum()),
-        "n_wall_points": int((~in_disk).sum()),
-        "n_springs": int(len(scene.springs)),
-        "atom_types": {str(k): v for k, v in TYPE_NAMES.items()},
-        "wall_row_tags": [1, n_row],
-        "wall_longest_segment": longest_segment,
-        "disk_spacing": float(disk.spacing * R),
-        "wall_spacing": float(wall.spacing * R),
-        "max_natural_length": float(lengths.max()),
-        "ka_disk": float(ka_disk),
-        "ka_wall": float(ka_wall),
-        # the unit of spec.wall_ka: the same for every disk lattice (wall_spring_constant)
-        "ka_wall_reference": float(ka_reference),
-        "kb_over_ka": spec.kb_over_ka,
-        "contact": {
-            "a": float(a),
-            "V0": float(contact_energy(spec, in_disk.sum())),
-            "cutoff": float(cutoff),
-        },
-        "disk_mass": float(in_disk.sum()),
-        "disk_inertia": inertia,
-        "disk_inertia_ratio": float(inertia / (in_disk.sum() * R * R)),
-        "initial_com": com.tolist(),
-        "initial_velocity": velocity.tolist(),
-        "cot_gamma": float(abs(velocity[1]) / velocity[0]) if velocity[0] > 0 else None,
     }

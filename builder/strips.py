@@ -13,9 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.checks import Range
+from ground.errors import InputError, require_choice
+
 from . import bodies
-from .checks import Range
-from .errors import InputError, require_choice
 from .lammps_data import network_data_text
 from .scene import K2_OVER_K1
 

@@ -5,18 +5,18 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from builder.checks import OutFolder, Range, require_out_folder
 from builder.cli import OneLineParser
-from builder.errors import InputError
 from builder.materials import TABLE
 from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
-from runner.study import runs_folder
+from ground.checks import OutFolder, Range, require_out_folder
+from ground.errors import InputError
+from ground.paths import DOCS, runs_folder
 
-from .stretch import ROOT, run_stretch
+from .stretch import run_stretch
 from .table import calibrate, markdown
 
-DOC = ROOT / "docs" / "materials.md"
+DOC = DOCS / "materials.md"
 STRIPS = Range(2, 1_000, integer=True)
 PULL_ANGLE = Range(-180.0, 180.0, unit="degrees")
 

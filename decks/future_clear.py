@@ -5,7 +5,7 @@ The positions at rest come from the deck's `fix rest_xy all store/state 0 x y`
 (stored when the run starts), not from the data file: parsing that took 0.1 s
 per impact. The lammps wrapper of an instance is made once: making one takes
 17 ms (it sets up every function of the library), more than the rule itself;
-run through the lammps module (runner.lammps_run.run_python), the runner's own
+run through the lammps module (ground.launch.run_python), the runner's own
 is used.
 """
 
@@ -29,7 +29,7 @@ ctypes.pythonapi.PyCapsule_GetPointer.argtypes = [ctypes.py_object, ctypes.c_cha
 def wrapper(handle):
     """The lammps object of the instance behind ``handle``, made once per instance."""
     address = ctypes.pythonapi.PyCapsule_GetPointer(handle, None)
-    running = sys.modules.get("runner.lammps_run")  # the lammps module's route
+    running = sys.modules.get("ground.launch")  # the lammps module's route
     if running is not None and address in running.ACTIVE:
         return running.ACTIVE[address]
     if address not in _wrappers:

@@ -109,7 +109,15 @@ def findings_section(fits: dict, study: dict) -> list[str]:
     name = matched(comparisons)
     context = {
         "study": study,
-        "aim": {"worst": worst, "angles": sum(len(t["gamma_deg"]) for t in touch.values())},
+        "aim": {
+            "worst": worst,
+            "angles": sum(len(t["gamma_deg"]) for t in touch.values()),
+            "no_line": sum(sum(t.get("no_line", ())) for t in touch.values()),
+            "impacts": sum(sum(t.get("impacts", ())) for t in touch.values()),
+            "within_one_percent": sum(
+                abs(x) <= 0.01 for t in touch.values() for x in t["relative"]
+            ),
+        },
         "normals": {
             target: {"e": robust_angles(check), "beta": robust_angles(check, "beta")}
             for target, check in checks.items()

@@ -15,6 +15,7 @@ from analysis.study_tables import (
     write_study_tables,
 )
 from analysis.table import collect
+from ground.paths import ROOT
 
 from .kinds import StudyTables, table_kind
 
@@ -131,9 +132,8 @@ def report_from_tables(
 
 def shown_path(path: Path) -> str:
     """A folder as the page names it: from the project's root where it is inside."""
-    root = Path(__file__).resolve().parents[1]
     path = Path(path).resolve()
-    return path.relative_to(root).as_posix() if path.is_relative_to(root) else str(path)
+    return path.relative_to(ROOT).as_posix() if path.is_relative_to(ROOT) else str(path)
 
 
 def render(

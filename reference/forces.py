@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import ctypes
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sparse
 
-from .contact import polyline_contact, two_ring_contact
-from .data import System
+from builder.lammps_data import System
+from ground.paths import BUILD
 
-LIBRARY = Path(__file__).resolve().parents[1] / "build" / "libreference_springs.so"
+from .contact import polyline_contact, two_ring_contact
+
+LIBRARY = BUILD / "libreference_springs.so"
 
 
 def compiled_springs():

@@ -13,16 +13,20 @@ import numpy as np
 
 from analysis.result import analyse_run, write_json_atomically
 from analysis.series import BINARY_COLUMNS, COLUMNS
-from builder.errors import InputError
+from builder.lammps_data import read_data
+from ground.checks import Range
+from ground.errors import InputError
+from ground.provenance import git_revision
 
 from .contact import InsideWall
-from .data import read_data
 from .forces import Model
 from .integrators import SCHEMES, weights
 
 DISK, WALL_HELD = 1, 3
 DISK_SURFACE, WALL_SURFACE = 1, 3
 VERSION = "reference (numpy)"
+# The reference's time step, R / c: the range of LAMMPS's runs (runner.options.DT).
+DT = Range(1e-5, 0.05, unit="R/c")
 
 
 class Unstable(RuntimeError):
@@ -40,8 +44,7 @@ class ReferenceOptions:
     check: int = 100
 
     def validate(self) -> None:
-        if not self.dt > 0:
-            raise InputError(f"dt must be > 0, got {self.dt}")
+        DT.check("dt", self.dt)
         if self.integrator not in SCHEMES:
             raise InputError(
                 f"integrator must be one of {', '.join(SCHEMES)}; got {self.integrator!r}"
@@ -256,8 +259,6 @@ def run_reference(folder: Path | str, options: ReferenceOptions) -> dict:
     dict
         The result (``analysis.result.analyse_run``), as written to result.json.
     """
-    from runner.impact import git_revision
-
     folder = Path(folder)
     for name in ("series.dat", "energy.dat", "run.json", "result.json"):
         (folder / name).unlink(missing_ok=True)

@@ -1,4 +1,6 @@
-"""LAMMPS against the reference, scene by scene (make validate).
+"""The reference's side of LAMMPS against the reference (make validate,
+bench/validation.py, which runs LAMMPS): the scenes, the reference's runs of
+them, the trajectories' differences and the tables.
 
 Impacts on rough surfaces are chaotic: perturbations of 1e-16 grow to 1e-9
 over a grazing impact, and a change of time step moves e by up to 0.02 there,
@@ -24,11 +26,10 @@ import numpy as np
 
 from analysis.restitution import contact_window
 from analysis.series import read_series
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec, build_scene
-from runner.impact import run_scene
-from runner.options import RunOptions
+from builder.scene import SceneSpec
 
 from .run import ReferenceOptions, run_reference
 
@@ -143,104 +144,6 @@ def trajectory_difference(lammps: Path, reference: Path) -> dict[str, float]:
             np.abs(np.interp(t, theirs["time"], spin(theirs)) - spin(ours)[during]).max()
         ),
     }
-
-
-def compare(
-    spec: SceneSpec, folder: Path, options: RunOptions, reference: dict, reference_folder: Path
-) -> dict:
-    result = run_scene(write_scene(build_scene(spec), folder), options)
-    row = {
-        "e": result["e"],
-        "beta": result["beta"],
-        "de": result["e"] - reference["e"],
-        "dbeta": result["beta"] - reference["beta"],
-        "energy_drift": result["energy_drift"],
-        "wall_seconds": result["wall_seconds"],
-        "steps": result["steps"],
-    }
-    row.update(trajectory_difference(folder, reference_folder))
-    return row
-
-
-def perturbed_spread(
-    spec: SceneSpec, folder: Path, options: RunOptions, copies: int = 6, size: float = 1e-9
-) -> dict:
-    """Spread of e and beta over copies of a scene whose disk points are moved by
-    ``size`` R in random directions: how far apart chaos takes trajectories."""
-    scene = build_scene(spec)
-    values = []
-    rng = np.random.default_rng(0)
-    for k in range(copies):
-        moved = build_scene(spec)
-        disk = moved.molecule == 1
-        moved.positions = moved.positions.copy()
-        moved.positions[disk] += size * rng.standard_normal((disk.sum(), 2))
-        moved.info = scene.info
-        result = run_scene(write_scene(moved, folder / f"copy{k}"), options)
-        values.append((result["e"], result["beta"]))
-    values = np.array(values)
-    return {
-        "e_sd": float(values[:, 0].std(ddof=1)),
-        "beta_sd": float(values[:, 1].std(ddof=1)),
-        "e_mean": float(values[:, 0].mean()),
-        "beta_mean": float(values[:, 1].mean()),
-    }
-
-
-def validate(out: Path, options: RunOptions, n_disk: int = 800, copies: int = 6) -> dict:
-    """Both tables of make validate: smooth scenes (accuracy), rough scenes
-    (implementation and chaos).
-
-    Parameters
-    ----------
-    out : pathlib.Path
-        Where the runs go (runs/validation); finished reference runs are reused.
-    options : RunOptions
-        How LAMMPS runs the scenes.
-    n_disk : int
-        Points in each disk.
-    copies : int
-        Perturbed copies of each rough scene, for the chaotic spread.
-
-    Returns
-    -------
-    dict
-        ``smooth`` and ``rough``: one row per scene, as ``markdown`` prints them.
-    """
-    smooth_specs = scenes(n_disk, roughness=0.0)
-    # every scene has n_disk points: one step for all (dt "auto" follows the spacing)
-    options = options.for_scene(next(iter(smooth_specs.values())))
-    smooth_refs = reference_runs(smooth_specs, out / "smooth")
-    smooth = {
-        name: compare(
-            spec,
-            out / "smooth" / name / "lammps",
-            options,
-            smooth_refs[name],
-            out / "smooth" / name / "reference",
-        )
-        for name, spec in smooth_specs.items()
-    }
-    for name in smooth:
-        smooth[name]["reference"] = smooth_refs[name]
-    rough_specs = scenes(n_disk)
-    same_step = ReferenceOptions(integrator="verlet", dt=options.dt)
-    twins = reference_runs(rough_specs, out / "rough", options=same_step, label="reference_verlet")
-    converged = reference_runs(rough_specs, out / "rough")
-    rough = {}
-    for name, spec in rough_specs.items():
-        row = compare(
-            spec,
-            out / "rough" / name / "lammps",
-            options,
-            twins[name],
-            out / "rough" / name / "reference_verlet",
-        )
-        row["converged_de"] = row["e"] - converged[name]["e"]
-        row["converged_dbeta"] = row["beta"] - converged[name]["beta"]
-        row.update(perturbed_spread(spec, out / "rough" / name / "perturbed", options, copies))
-        rough[name] = row
-    return {"smooth": smooth, "rough": rough}
 
 
 def markdown(tables: dict) -> str:

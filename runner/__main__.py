@@ -11,7 +11,6 @@ import time
 from pathlib import Path
 
 from builder.bodies import LATTICES as BODY_LATTICES
-from builder.checks import InPath, OutFolder, require_out_folder
 from builder.cli import (
     OneLineParser,
     add_model_arguments,
@@ -21,7 +20,6 @@ from builder.cli import (
     spec_from_args,
     validate_spec,
 )
-from builder.errors import BuildError, InputError
 from builder.scene import (
     CONTACT_A,
     CONTACT_SCALINGS,
@@ -34,9 +32,11 @@ from builder.scene import (
     VN,
     speed_warning,
 )
+from ground.checks import InPath, OutFolder, require_out_folder
+from ground.errors import BuildError, InputError
+from ground.launch import LammpsError
 
 from .clusters import CLUSTERS, CORES_PER_JOB, JOBS, WORKERS, ClusterSpec
-from .lammps_run import LammpsError
 from .options import (
     AUTO,
     CHECK_INTERVAL,
@@ -86,7 +86,7 @@ def study_name(text: str) -> str:
     return text
 
 
-# tests/test_bad_input.py
+# tests/cli/test_bad_input.py
 study_name.bad_values = ("", ".", "a b", "../up", "a/b", "x$y", "n" * 300)
 
 
@@ -100,7 +100,7 @@ def time_step(text: str) -> float | str:
         raise argparse.ArgumentTypeError(f"must be {DT.describe()} or 'auto', got {text}") from None
 
 
-time_step.numbers = DT  # tests/test_bad_input.py feeds it bad numbers
+time_step.numbers = DT  # tests/cli/test_bad_input.py feeds it bad numbers
 
 
 def add_run_arguments(parser) -> None:
@@ -662,8 +662,9 @@ def cluster_from_args(args, study_folder: Path) -> ClusterSpec:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from analysis.text_table import format_table
+
     from .impact import run_impact, run_scene
-    from .report import format_table
 
     args = parser().parse_args(argv)
     try:
@@ -838,7 +839,7 @@ def docs_page(args, described) -> str | None:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         For --docs where the study has no page, or with a --name that is not
         one of its readings, or a page that is another study's.
     """

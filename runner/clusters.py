@@ -25,8 +25,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from builder.checks import Range
-from builder.errors import InputError
+from ground.checks import Range
+from ground.errors import InputError
 
 CLUSTERS = ("local", "slurm")
 WORKERS = Range(1, 1_024, integer=True)
@@ -54,7 +54,7 @@ SBATCH_SECONDS = 25
 JOIN_SECONDS = 30
 PASSED_ON = ("IMPACT_RUNS", "IMPACT_POISSON_CACHE", "OMPI_ALLOW_RUN_AS_ROOT",
              "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM")  # fmt: skip
-# How a Slurm job's workers start an impact's ranks (runner.lammps_run.mpi_launcher)
+# How a Slurm job's workers start an impact's ranks (ground.launch.mpi_launcher)
 # unless IMPACT_MPIRUN says otherwise: a step of the job's own cores. OpenMPI's
 # direct launch needs PMIx; a plain srun fails on Debian 12's Slurm 22.05.
 SLURM_MPIRUN = "srun --mpi=pmix"
@@ -95,7 +95,7 @@ class ClusterSpec:
 
         Raises
         ------
-        builder.errors.InputError
+        ground.errors.InputError
             One line naming --ranks, the cores and what would fit.
         """
         said = f"ranks {self.ranks} (--ranks, or the study file's [run] ranks)"

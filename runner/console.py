@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import importlib
 import sys
-from pathlib import Path
 
-BENCH = Path(__file__).resolve().parents[1] / "bench"
+from ground.paths import ROOT
+
+BENCH = ROOT / "bench"
 # subcommand -> (module with main(argv), the words it puts first, what it does)
 COMMANDS = {
     "scene": ("builder.__main__", ["scene"], "build a scene folder (python -m builder scene)"),
@@ -26,7 +27,7 @@ COMMANDS = {
     "page": ("runner.__main__", ["page"], "a study's page again from its committed tables"),
     "tilt": ("runner.__main__", ["tilt"], "the wall's tilt under the disk, from dumps"),
     "calibrate": ("calibration.__main__", ["run"], "measure E, nu and c of every lattice"),
-    "validate": ("reference.__main__", ["validate"], "LAMMPS against the reference integrator"),
+    "validate": ("bench.validation", [], "LAMMPS against the reference integrator"),
     "bench": ("bench", [], "a benchmark of the tool: oblique-impact bench NAME [options]"),
 }
 PROG = "oblique-impact"

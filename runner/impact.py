@@ -2,22 +2,21 @@
 
 from __future__ import annotations
 
-import functools
 import json
 import math
-import subprocess
 from pathlib import Path
 
 from analysis.result import analyse_run, write_json_atomically
-from builder.checks import word_problem
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
+from ground.checks import word_problem
+from ground.errors import InputError
+from ground.launch import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
+from ground.provenance import git_revision
 
-from .lammps_run import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
 from .options import RunOptions
 
-ROOT = Path(__file__).resolve().parents[1]
 RUN_OUTPUTS = (
     "log.lammps",
     "series.dat",
@@ -26,35 +25,6 @@ RUN_OUTPUTS = (
     "run.json",
     "result.json",
 )
-
-
-@functools.lru_cache(maxsize=1)
-def git_revision() -> str:
-    """The project's commit, with '+dirty' if the work tree has changes; asked
-    of git once per process (two git commands cost 4 ms, 4 % of an impact).
-
-    Returns
-    -------
-    str
-        A 12-digit abbreviated commit hash, or ``unknown`` outside a git clone.
-    """
-    try:
-        head = subprocess.run(
-            ["git", "rev-parse", "--short=12", "HEAD"],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout.strip()
-        dirty = subprocess.run(
-            ["git", "status", "--porcelain", "--untracked-files=no"],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-        ).stdout.strip()
-        return head + ("+dirty" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
 
 
 def check_folder(folder: Path | str) -> None:
@@ -100,9 +70,9 @@ def run_scene(
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the folder or the options are invalid.
-    runner.lammps_run.LammpsError
+    ground.launch.LammpsError
         If LAMMPS stops with an error (its message).
     """
     options.validate()

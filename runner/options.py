@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, replace
 
 from analysis.result import MAX_DRIFT
-from builder.checks import Range
-from builder.errors import InputError, require_choice
 from builder.lammps_data import DEFAULT_SPRINGS, SPRING_STYLES
+from ground.checks import Range
+from ground.errors import InputError, require_choice
 
 INTEGRATORS = ("verlet", "respa")
 CONTACTS = ("segment", "pair")

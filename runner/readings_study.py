@@ -21,11 +21,13 @@ from pathlib import Path
 from analysis.failures import impact_state
 from analysis.kinds import kind_module
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
-from builder.checks import require_out_folder
-from builder.errors import InputError
+from ground.checks import require_out_folder
+from ground.errors import InputError
+from ground.paths import ROOT, runs_folder
+from ground.provenance import machine
 from pages.kinds import readings_page
 
-from .study import ROOT, check_environment, check_source, machine, runs_folder
+from .study import check_environment, check_source
 from .study_file import StudyFile, axis_studies, combinations
 
 # runner study's options that a readings study takes (its file says the rest).

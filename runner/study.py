@@ -19,27 +19,20 @@ from pathlib import Path
 import numpy as np
 
 from analysis.result import UnreadableResult, read_result
-from builder.checks import require_out_folder, word_problem
-from builder.errors import InputError
+from builder.assembly import build_scene
 from builder.lammps_data import write_bodies, write_scene
 from builder.materials import STUDY_LATTICES, calibrated
-from builder.outputs import NAME_MAX, runs_folder
-from builder.scene import (
-    MODEL_READINGS,
-    SEED,
-    VN,
-    SceneSpec,
-    build_scene,
-    speed_warning,
-    wall_spring_constant,
-)
+from builder.outputs import NAME_MAX
+from builder.scene import MODEL_READINGS, SEED, VN, SceneSpec, speed_warning, wall_spring_constant
+from ground.checks import require_out_folder, word_problem
+from ground.errors import InputError
+from ground.launch import STYLE_LIBRARIES, data_to_restart
+from ground.paths import ROOT, runs_folder
+from ground.provenance import cpu_name
 
-from .lammps_run import ROOT as LAMMPS_ROOT
-from .lammps_run import STYLE_LIBRARIES, data_to_restart
 from .options import RunOptions, on_ranks
 from .values import ANGLES, COT_GAMMA, SAMPLES  # noqa: F401 (the command line's too)
 
-ROOT = Path(__file__).resolve().parents[1]
 LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
@@ -361,7 +354,7 @@ class SampleBodies:
     runs/<study>/.bodies/<host>-<pid>/, the last few kept. Only the disk's
     placement and velocity differ between a sample's impacts
     (builder.lammps_data); the restart is read in a tenth of the data file's
-    time, into the same atoms in the same order (tests/test_sample_bodies.py;
+    time, into the same atoms in the same order (tests/runner/test_sample_bodies.py;
     on one rank: on several, LAMMPS splits the box among them, and a restart
     of the unplaced bodies has another box than a placed data file)."""
 
@@ -379,7 +372,7 @@ class SampleBodies:
 
         Raises
         ------
-        builder.errors.InputError
+        ground.errors.InputError
             If the folder's path is not one word, which LAMMPS needs.
         """
         spec = asdict(scene.spec)
@@ -414,7 +407,7 @@ class EnvironmentFault(RuntimeError):
 def check_environment(study: Study) -> None:
     """The project's LAMMPS styles and every lattice's calibration, before any impact."""
     for library, _ in STYLE_LIBRARIES.values():
-        path = LAMMPS_ROOT / "build" / library
+        path = ROOT / "build" / library
         if not path.is_file():
             raise EnvironmentFault(f"{path} is missing: make setup builds it")
     for lattice in study.lattices:
@@ -552,7 +545,7 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         One line naming the file and what differs, for any other change (a
         record from before files were recorded has no ``source``: no check).
     """
@@ -603,28 +596,6 @@ def record_wall_clock(study: Study, seconds: float, counts: dict) -> None:
             "driver_cpu_seconds": round(counts.get("driver_cpu_seconds", 0.0), 2),
         }
         path.write_text(json.dumps(info, indent=1))
-
-
-def machine() -> str:
-    """The machine and LAMMPS a page's numbers were measured on, and the date."""
-    import platform
-    import re
-    import subprocess
-    from datetime import date
-
-    lmp = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout
-    version = re.search(r"LAMMPS - (.*?) -", lmp) or re.search(r"Simulator - (.*)\n", lmp)
-    return (
-        f"{cpu_name()}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, "
-        f"LAMMPS {version.group(1).strip() if version else 'unknown'}, {date.today()}"
-    )
-
-
-def cpu_name() -> str:
-    for line in Path("/proc/cpuinfo").read_text().splitlines():
-        if line.startswith("model name"):
-            return line.split(":", 1)[1].strip()
-    return "unknown CPU"
 
 
 def load_presets() -> tuple[dict, dict, dict, dict, dict]:

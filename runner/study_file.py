@@ -57,15 +57,15 @@ from pathlib import Path
 
 from analysis.kinds import KINDS, READINGS_KINDS, kind_module
 from analysis.readings import NAMED
-from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
+from ground.errors import InputError
+from ground.paths import STUDIES
 from pages.sections import SECTIONS as PAGE_SECTIONS
 
 from .options import RANKS, RunOptions, on_ranks
 from .values import VALUES
 
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
 GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
 SECTIONS = ("grid", "scene", "run", "rerun")
 # Fields that take a list: the study's own axes.
@@ -83,7 +83,7 @@ def study_path(name_or_path: str) -> Path:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If there is no such file (naming the studies there are).
     """
     path = Path(name_or_path)
@@ -134,7 +134,7 @@ def read_study_file(path: Path) -> StudyFile:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         One line naming the file and the key, for a key that is not an
         option, a value of the wrong kind, or a file that is not TOML.
     """
@@ -346,7 +346,7 @@ def axis_studies(
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If a combination's name could not be a folder of runs/.
     """
     run_fields = {f.name for f in fields(RunOptions)}

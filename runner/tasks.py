@@ -27,9 +27,9 @@ from pathlib import Path
 
 from analysis.failures import impact_state
 from analysis.result import write_json_atomically
+from ground.launch import lammps_error
 
 from .impact import run_scene
-from .lammps_run import lammps_error
 from .study import STARTED, Study, prune
 
 # Starts of one impact that may end their worker without a LAMMPS error

@@ -2,13 +2,13 @@
 command line.
 
 Each option of a study (its grid, its scene, its run) has an entry here: a
-``Value``, a number in a ``builder.checks.Range``, one of some words, or
+``Value``, a number in a ``ground.checks.Range``, one of some words, or
 either. A study file's values are checked against it (each value of an axis
 too, in any position), and runner study's options take it as their type, so
 that a file and the command line refuse the same values with the same words.
 The ranges themselves are defined beside what uses them (builder.scene,
 runner.options); an option added there needs its line here
-(tests/test_refusals.py fails until it has one).
+(tests/cli/test_refusals.py fails until it has one).
 """
 
 from __future__ import annotations
@@ -17,8 +17,6 @@ import argparse
 from dataclasses import dataclass
 
 from builder.bodies import LATTICES as BODY_LATTICES
-from builder.checks import Range
-from builder.errors import InputError
 from builder.materials import STUDY_LATTICES
 from builder.scene import (
     ANGLE,
@@ -40,6 +38,8 @@ from builder.scene import (
     WALL_SAME_C,
     WALL_WIDTH,
 )
+from ground.checks import Range
+from ground.errors import InputError
 
 from .options import (
     AUTO,

@@ -26,14 +26,16 @@ from pathlib import Path
 import numpy as np
 
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
-from builder.checks import InPath, OutFolder, Range
-from builder.errors import InputError
 from builder.scene import ANGLE
+from ground.checks import InPath, OutFolder, Range
+from ground.errors import InputError
+from ground.paths import ROOT, runs_folder
+from ground.provenance import machine
 from pages.report import shown_path
 from pages.text import markdown_table
 
-from .impact import ROOT, run_impact
-from .study import Study, machine, runs_folder
+from .impact import run_impact
+from .study import Study
 
 DUMP_EVERY = Range(1, 10_000, integer=True)
 
@@ -126,7 +128,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
 
     Raises
     ------
-    builder.errors.InputError
+    ground.errors.InputError
         If the tables are missing or --gamma is not one of their angles.
     """
     # the default is checked here; a given folder was by its type

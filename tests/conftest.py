@@ -7,8 +7,9 @@ import shutil
 
 import pytest
 
+from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec, build_scene
+from builder.scene import SceneSpec
 from tests.helpers import RUNS, SMALL
 
 

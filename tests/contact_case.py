@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.launch import mpi_environment, mpi_launcher
 from reference.contact import inside
-from runner.lammps_run import mpi_environment, mpi_launcher
 from tests.helpers import ROOT
 
 DECK = ROOT / "tests" / "decks" / "contact_forces.lmp"

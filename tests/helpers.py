@@ -12,9 +12,10 @@ import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from ground.paths import ROOT
+
 # The tests' studies and runs go into a temporary folder of their own, never
-# into the clone's runs/ (runner.study.runs_folder reads it, and the commands
+# into the clone's runs/ (ground.paths.runs_folder reads it, and the commands
 # the tests start inherit it); conftest.py removes it at the end.
 RUNS = Path(tempfile.mkdtemp(prefix="impact-test-runs-"))
 os.environ["IMPACT_RUNS"] = str(RUNS)
@@ -57,7 +58,7 @@ def genuine_failures(study: Path) -> dict[str, str]:
     """{folder: error} of the scenario's failed impacts, after checking that
     exactly the 80.5-degree ones failed, each with the ERROR of its own log,
     and that the 45-degree ones finished."""
-    from runner.lammps_run import lammps_error
+    from ground.launch import lammps_error
 
     failed = {str(p.parent): json.loads(p.read_text())["error"] for p in study.rglob("failed.json")}
     done = {str(p.parent) for p in study.rglob("result.json")}

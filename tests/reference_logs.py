@@ -5,7 +5,7 @@ decks/impact.lmp on the default scene at 30 degrees, seed 1 (what
 ``python -m runner impact --gamma 30`` runs), with one and two MPI ranks and a
 thermo row every 20 steps (0.16 R/c at the default step). ``make reference-logs`` (``main``)
 writes them anew, replacing the old ones: run it, and commit the result,
-whenever the default scene or the deck changes. tests/test_reference_logs.py
+whenever the default scene or the deck changes. tests/runner/test_reference_logs.py
 checks a fresh run against them.
 """
 
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from runner.lammps_run import mpi_environment, mpi_launcher
+from ground.launch import mpi_environment, mpi_launcher
 from tests.helpers import ROOT
 
 DECKS = ROOT / "decks"

@@ -1,0 +1,1 @@
+"""The analysis of a study's tables: fits, theories, statistics, pages (analysis/)."""

@@ -1,0 +1,1 @@
+"""The benchmark scripts start and refuse bad options (bench/)."""

@@ -1,0 +1,1 @@
+"""The builder's lattices, scenes and data files (builder/)."""

@@ -1,0 +1,1 @@
+"""The command lines: every entry point's options and files refused in one line, the one command."""

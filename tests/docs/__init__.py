@@ -1,0 +1,1 @@
+"""The committed pages made again from their tables (docs/)."""

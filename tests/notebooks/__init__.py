@@ -1,0 +1,1 @@
+"""The notebook, run under a Jupyter kernel (notebooks/)."""

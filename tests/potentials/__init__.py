@@ -1,0 +1,1 @@
+"""The C++ styles of potentials/ against independent implementations."""

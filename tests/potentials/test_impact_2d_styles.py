@@ -1,0 +1,117 @@
+"""The impact deck's 2-D styles (potentials/): compute motion/2d against
+LAMMPS's group functions, fix nve/2d against fix nve bit for bit."""
+
+from __future__ import annotations
+
+import filecmp
+import subprocess
+
+import numpy as np
+import pytest
+
+from ground.launch import mpi_environment, run_lmp
+from tests.helpers import ROOT, new_lammps
+
+pytestmark = pytest.mark.lammps
+
+
+def motion_instance(scene_dir):
+    """The scene in LAMMPS with the disk spinning, group functions and
+    compute motion/2d side by side."""
+    from ground.launch import register_styles
+
+    lmp = new_lammps()
+    register_styles(lmp)
+    for command in [
+        "units lj",
+        "dimension 2",
+        "boundary s s p",
+        "atom_style bond",
+        "special_bonds lj/coul 1.0 1.0 1.0",
+        "bond_style class2",  # small_scene_dir's springs
+        f"read_data {scene_dir}/scene.data",
+        "group disk molecule 1",
+        "pair_style zero 0.1",
+        "pair_coeff * *",
+        "comm_modify cutoff 1.0",
+        "velocity disk create 0.01 4928 loop geom",
+        "variable spin_x atom vx-0.05*(y-xcm(disk,y))",
+        "variable spin_y atom vy+0.05*(x-xcm(disk,x))",
+        "velocity disk set v_spin_x v_spin_y NULL",
+        "fix move all nve",
+        "timestep 0.008",
+        "compute motion disk motion/2d",
+        "run 50",
+    ]:
+        lmp.command(command)
+    return lmp
+
+
+def test_motion_2d_is_the_group_functions(small_scene_dir):
+    lmp = motion_instance(small_scene_dir)
+    motion = [lmp.numpy.extract_compute("motion", 0, 1)[k] for k in range(9)]
+    functions = [
+        "xcm(disk,x)",
+        "xcm(disk,y)",
+        "vcm(disk,x)",
+        "vcm(disk,y)",
+        "angmom(disk,z)",
+        "inertia(disk,zz)",
+        "omega(disk,z)",
+        "fcm(disk,x)",
+        "fcm(disk,y)",
+    ]
+    for k, function in enumerate(functions):
+        lmp.command(f"variable f{k} equal {function}")
+    expected = [lmp.extract_variable(f"f{k}") for k in range(len(functions))]
+    lmp.close()
+    # the same sums in the same order: equal but for omega (LAMMPS inverts the
+    # 3-D inertia tensor, Lz / Izz here) and the force, which LAMMPS sums in
+    # one pass with the positions
+    assert motion[:6] == expected[:6]
+    assert motion[6] == pytest.approx(expected[6], rel=1e-12)
+    assert np.allclose(motion[7:], expected[7:], rtol=0, atol=1e-12)
+    assert abs(motion[4]) > 1.0 and abs(motion[6]) > 1e-3  # it does spin
+
+
+@pytest.mark.parametrize("integrator", ["verlet", "respa"])
+def test_nve_2d_is_fix_nve_bit_for_bit(small_scene_dir, tmp_path, integrator):
+    """The same impact with LAMMPS's fix nve and with fix nve/2d: every row of
+    the series and the energies, to the last bit."""
+    outputs = []
+    for style in ("nve", "nve/2d"):
+        out = tmp_path / style.replace("/", "")
+        out.mkdir()
+        variables = {"scene": str(small_scene_dir), "out": str(out), "nve_style": style}
+        variables.update({"springs": "class2", "integrator": integrator, "tmax": "20"})
+        run_lmp(variables, out / "log.lammps")
+        outputs.append(out)
+    for name in ("series.dat", "energy.dat"):
+        assert filecmp.cmp(outputs[0] / name, outputs[1] / name, shallow=False)
+    assert len((outputs[0] / "series.dat").read_text().splitlines()) > 100  # it ran
+
+
+@pytest.mark.parametrize(
+    ("command", "message"),
+    [
+        ("compute motion all motion/2d", "Compute motion/2d requires dimension 2"),
+        ("fix move all nve/2d", "Fix nve/2d requires dimension 2"),
+    ],
+)
+def test_a_2d_style_refuses_3d(tmp_path, command, message):
+    """One line naming what it needs, a non-zero exit (lmp in a child: Debian's
+    LAMMPS has no C++ exceptions)."""
+    deck = tmp_path / "in.3d"
+    deck.write_text(
+        "units lj\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
+        f"include decks/impact_2d.lmp\n{command}\nrun 0\n"
+    )
+    proc = subprocess.run(
+        ["lmp", "-in", str(deck), "-log", "none"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        env=mpi_environment(),
+    )
+    assert proc.returncode != 0
+    assert f"ERROR: {message}" in proc.stdout

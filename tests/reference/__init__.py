@@ -1,0 +1,1 @@
+"""The in-house reference integrator and LAMMPS against it (reference/)."""
