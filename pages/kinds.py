@@ -27,8 +27,8 @@ from analysis.table import MEAN_COLUMNS, rounded, write_csv
 
 from . import binary, binary_findings, figures, grazing, normals
 from . import speed as speed_page
+from .render import render
 from .results import results_page
-from .text import page_text
 
 
 @dataclass(frozen=True)
@@ -202,5 +202,8 @@ def readings_page(kind: str, tables: Path, page: Path, setup: Setup) -> Path:
     record = read_record(tables)
     setup = replace(setup, record=record, figures=figure_dir.relative_to(page.parent).as_posix())
     body = module.page(read_rows(tables), setup, figure_dir)
-    page.write_text(page_text(module.TITLE, record, body))
+    # the title, the command and machine that made the rows (for rows made
+    # before the study file, the commit of the command and the command that
+    # runs the same studies since), the body
+    page.write_text(render("readings_page.md.j2", title=module.TITLE, record=record, body=body))
     return page

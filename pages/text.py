@@ -1,5 +1,5 @@
-"""What every page's text is made of: a number with its error, a Markdown
-table, a readings page's frame."""
+"""What every page's text is made of: a number with its error, a count in
+words, a Markdown table, the options a reading changes."""
 
 from __future__ import annotations
 
@@ -27,15 +27,6 @@ def markdown_table(header: list[str], rows: list[list[str]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(row) + " |" for row in rows]
     return "\n".join(lines)
-
-
-def page_text(title: str, record: dict, body: str) -> str:
-    """A readings page: its title, the command and machine that made its rows
-    (for rows made before the study file, the commit of the command and the
-    command that runs the same studies since), its body."""
-    from .render import render
-
-    return render("readings_page.md.j2", title=title, record=record, body=body)
 
 
 # What a reading's study.json may differ in from the study's and still be a
