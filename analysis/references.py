@@ -37,6 +37,7 @@ COLUMNS = (
     "gamma_deg",
     "cot_gamma",
     "vn",
+    "vn_in_c",
     "target",
     "target_held",
     "e",
@@ -65,6 +66,7 @@ COLUMNS = (
     "error",
 )
 ORDER = tuple(REFERENCES)  # pair, image, image-held, surface, wall
+FIGURE = "references_speed.png"  # e and the contact time against the pair's speed
 
 
 def label(choice: dict) -> str:
@@ -88,4 +90,4 @@ def plan(choice: dict, study):
 def page(rows: list[dict], setup: Setup, figures) -> str:
     from .references_page import body
 
-    return body(rows, setup, figures)
+    return body(rows, setup, figures, FIGURE)
