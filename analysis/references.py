@@ -25,12 +25,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import numpy as np
-
-from .binary_comparison import verdict
-from .estimates import study_estimates
 from .readings import ONE_BODY, REFERENCES, Setup
-from .seeds import seed_bootstrap, seed_tables
 
 COLUMNS = (
     "reading",
@@ -41,6 +36,7 @@ COLUMNS = (
     "gamma_deg",
     "cot_gamma",
     "vn",
+    "vn_in_c",
     "target",
     "target_held",
     "e",
@@ -87,121 +83,3 @@ def plan(choice: dict, study):
     if choice["reference"] not in ONE_BODY:
         return study
     return replace(study, vn=study.vn / 2.0, speeds=tuple(speed / 2.0 for speed in study.speeds))
-
-
-RESAMPLES = 200
-CHI2_LIMIT = 2.0
-NEAR_NORMAL_COT = 1.0  # e_normal: the mean e over the angles with cot gamma >= 1
-# The comparisons: (question, reference, reference)
-QUESTIONS = (
-    ("the two-body mapping", "image", "surface"),
-    ("the wall's construction", "surface", "wall"),
-    ("the partner's own disk", "pair", "image"),
-    ("the partner's compliance, its shape kept", "image", "image-held"),
-)
-
-
-def finished(rows: list[dict]) -> list[dict]:
-    return [r for r in rows if not r.get("error") and r.get("e") not in (None, "")]
-
-
-def pair_speed(row: dict) -> float:
-    """The pair's relative speed a row stands beside (twice a one-body run's)."""
-    factor = 2.0 if row["reference"] in ONE_BODY else 1.0
-    return round(factor * float(row["vn"]), 9)
-
-
-def group_key(reference: str, speed: float) -> str:
-    return f"{reference}@{speed:g}"
-
-
-def grouped(rows: list[dict]) -> dict[str, list[dict]]:
-    """Rows by reference and pair speed, each marked as its own study lattice."""
-    out: dict[str, list[dict]] = {}
-    for row in rows:
-        key = group_key(row["reference"], pair_speed(row))
-        out.setdefault(key, []).append({**row, "study_lattice": key})
-    return out
-
-
-def near_normal(table, quantity: str) -> float:
-    keep = 1.0 / np.tan(np.radians(table.gamma_deg)) >= NEAR_NORMAL_COT
-    return float(np.nanmean(table.mean(quantity)[keep]))
-
-
-def joint_numbers(groups: dict[str, list[dict]], resamples: int) -> dict:
-    """e near normal incidence and the contact time at the first angle, per
-    group, and the differences QUESTIONS asks, with joint seed errors."""
-    rows = [row for group in groups.values() for row in group]
-    tables = seed_tables(rows, ("e", "beta", "contact_time"))
-    speeds = sorted({float(k.split("@")[1]) for k in groups})
-
-    def statistic(ts) -> dict:
-        out = {}
-        for key, table in ts.items():
-            out[("e_normal", key)] = near_normal(table, "e")
-            out[("contact_time", key)] = float(table.mean("contact_time")[0])
-        for speed in speeds:
-            for _, a, b in QUESTIONS:
-                ka, kb = group_key(a, speed), group_key(b, speed)
-                if ka in ts and kb in ts:
-                    for q in ("e_normal", "contact_time"):
-                        out[(f"d_{q}", ka, kb)] = out[(q, ka)] - out[(q, kb)]
-        return out
-
-    return {"value": statistic(tables), "error": seed_bootstrap(tables, statistic, resamples)}
-
-
-def walton(group: list[dict], resamples: int) -> dict:
-    """Walton's measured-way fit of one group: mu, its seed error, chi2/dof,
-    and the systematic error of the fitting choices."""
-    fits, _ = study_estimates(group, resamples=resamples, compliant=False)
-    entry = next(iter(fits["lattices"].values()))
-    fit = entry["walton"]["measured"]
-    systematic = entry["walton"]["systematic"]["mu"]
-    failing = fit["chi2"] > CHI2_LIMIT
-    error = float(np.hypot(fit["mu_sd"], systematic)) if failing else float(fit["mu_sd"])
-    return {
-        "mu": fit["mu"],
-        "sd": fit["mu_sd"],
-        "chi2": fit["chi2"],
-        "systematic": systematic,
-        "error": error,
-        "failing": failing,
-        "mu_eff_top": entry["measures"]["mu_eff_top"],
-    }
-
-
-def comparisons(value: dict, error: dict, fits: dict, groups: dict, speeds: list[float]) -> list:
-    """Each question's differences at each speed (e near normal incidence,
-    the contact time, Walton's mu), with joint errors and verdicts."""
-    out = []
-    for s in speeds:
-        for question, a, b in QUESTIONS:
-            ka, kb = group_key(a, s), group_key(b, s)
-            if ka not in groups or kb not in groups:
-                continue
-            for q in ("e_normal", "contact_time"):
-                d, err = value[(f"d_{q}", ka, kb)], error[(f"d_{q}", ka, kb)]
-                out.append({"speed": s, "question": question, "a": a, "b": b, "of": q,
-                            "value": d, "error": err, "verdict": verdict(d, err)})  # fmt: skip
-            d_mu = fits[ka]["mu"] - fits[kb]["mu"]
-            e_mu = float(np.hypot(fits[ka]["error"], fits[kb]["error"]))
-            out.append({"speed": s, "question": question, "a": a, "b": b, "of": "Walton's mu",
-                        "value": d_mu, "error": e_mu, "verdict": verdict(d_mu, e_mu)})  # fmt: skip
-    return out
-
-
-def findings(rows: list[dict]) -> list[dict]:
-    """Per question, per quantity: how many speeds give each verdict."""
-    out = []
-    for question, a, b in QUESTIONS:
-        said = []
-        for q in ("e_normal", "contact_time", "Walton's mu"):
-            verdicts = [r["verdict"] for r in rows if r["question"] == question and r["of"] == q]
-            if verdicts:
-                counts = {w: verdicts.count(w) for w in ("same", "undecided", "differs")}
-                said.append({"of": q, "counts": counts, "speeds": len(verdicts)})
-        if said:
-            out.append({"question": question, "a": a, "b": b, "said": said})
-    return out
