@@ -24,13 +24,10 @@ import math
 # What counts as near (MODEL.md section 8). The triangular disk's share of
 # angles with beta > 0 has no unit there: a tenth of the angles is this page's.
 NEAR = {"e": 0.1, "mu": 0.05, "beta0": 0.2, "share_beta_positive": 0.1, "near_side": 0.1}
-RULE_NEAR = (
-    "near: meets if the value +- 2 errors lies inside the paper's value +- near, misses if "
-    "wholly outside, undecided otherwise"
-)
-RULE_SAME = (
-    "the same: meets if the difference is within 2 errors, misses beyond 3, undecided between"
-)
+# The rules' numbers of errors (module docstring): within SAME errors a
+# number meets, beyond DIFFERS it misses (pages/templates/results/claims.md.j2
+# states them).
+SAME, DIFFERS = 2.0, 3.0
 
 
 def verdict(value, error, paper: float, near: float | None) -> str:
@@ -40,10 +37,10 @@ def verdict(value, error, paper: float, near: float | None) -> str:
     error = error if error is not None and math.isfinite(error) else 0.0
     if near is None:
         gap = abs(value - paper)
-        if gap <= 2.0 * error:
+        if gap <= SAME * error:
             return "meets"
-        return "misses" if gap > 3.0 * error else "undecided"
-    low, high = value - 2.0 * error, value + 2.0 * error
+        return "misses" if gap > DIFFERS * error else "undecided"
+    low, high = value - SAME * error, value + SAME * error
     if paper - near <= low and high <= paper + near:
         return "meets"
     if high < paper - near or low > paper + near:

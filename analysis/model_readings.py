@@ -14,16 +14,14 @@ best follows, with the default of the day: ``current_default``).
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 from builder.scene import FIRST_READING, SceneSpec
 
 from .claims import claims
 from .estimates import study_estimates
-from .readings import MODEL_CHANGES, WALLS, Setup, distance_from_text, markdown_table
+from .readings import MODEL_CHANGES, WALLS, Setup, distance_from_text
 from .seeds import QUANTITIES
 
-TITLE = "The readings of the model"
 LATTICES = ("random", "triangular")
 
 # The facts (analysis.claims's order) and the number each is measured by.
@@ -149,70 +147,3 @@ def summaries_of(rows: list[dict], setup: Setup) -> dict:
     present = {r["reading"] for r in rows}
     shown = [label(c) for c in setup.choices if label(c) in present]
     return {x: facts([r for r in rows if r["reading"] == x]) for x in shown}
-
-
-def page(rows: list[dict], setup: Setup, figures: Path) -> str:
-    """The page's body (no figure): every reading on all its seeds, ranked."""
-    study, rerun = setup.study, setup.rerun
-    summaries = summaries_of(rows, setup)
-    shown = list(summaries)
-    ranking = rank_summaries(summaries)
-    header = ["wall", "model", "impacts", "failed"]
-    header += [f"{name}" for name, *_ in FACTS]
-    header += [
-        "Walton chi2/dof",
-        "misses (e, mu, beta0, share, side)",
-        "total miss",
-        "away from text",
-    ]
-    table = []
-    for reading in ranking + [r for r in shown if r not in ranking]:
-        s = summaries[reading]
-        cells = [*reading.split("/"), str(s["impacts"]), str(s["failed"])]
-        if "total" not in s:
-            table.append(cells + ["-"] * (len(header) - len(cells) - 1) + [str(away(reading))])
-            continue
-        cells += [f"{s[name]['value']:.3f} +- {s[name]['error']:.3f}" for name, *_ in FACTS]
-        cells += [
-            f"{s['chi2']:.1f}",
-            ", ".join(f"{s[name]['miss']:.2f}" for name, *_ in FACTS),
-            f"{s['total']:.2f} +- {s['total_se']:.2f}",
-            str(away(reading)),
-        ]
-        table.append(cells)
-    best = ranking[0].split("/") if ranking else None
-    return (
-        f"Random and triangular disks (800 points), {study['angles']} angles from 5.7 to 80.5 "
-        f"degrees, seeds 1 to {study['samples']} per reading (the {rerun.get('best', 0)} best, "
-        f"and the default when the run was made, `{setup.record['default']}`, to "
-        f"{rerun.get('samples')}), "
-        "v_n = 0.1 (in the reading's unit), the default run of the day (velocity "
-        f"Verlet, dt = {study['options']['dt']:g} R/c). A reading is a wall (the five best of "
-        "[scene_readings.md](scene_readings.md), `points_ka_held`) and a reading of the model "
-        "(`first-read`: one point's mass, the speed in c, roughness along the normal, an even "
-        "row, the regular disks' band; otherwise the options it changes, docs/model.md "
-        "section 8).\n\n"
-        "The facts of MODEL.md section 8, each the value with its seed-bootstrap error (whole "
-        "seeds resampled, every angle of both disks together): **e** the mean over cot gamma "
-        ">= 1 (paper: 0.8); **mu** and **beta0** Walton's fit to the random disk the paper's "
-        "way, e fixed at 0.8 and K = 3 (paper: 0.18 and 0.56; its reduced chi^2 beside); "
-        "**triangular beta > 0** the triangular disk's share of angles whose mean beta is "
-        "positive (paper: 0); **near a side** the random disk's share of contacts within 1 R "
-        "of a held side (paper: 0, its contacts stayed on the wall). A miss is |value - paper| "
-        "in units of what counts as near (0.1, 0.05, 0.2, 0.1, 0.1); a fact is met at a miss "
-        "up to 1. **Total miss**: their sum, with the error of the sum from the facts' errors. "
-        "The rule: the default is the reading of least total miss; where others come within "
-        "one combined standard error of it, the one with the fewest choices away from the "
-        "paper's text (800 points, one ka, the sides held, the speed in c, roughness along the "
-        "normal, the triangular disk's surface the random kind).\n\n"
-        + markdown_table(header, table)
-        + (
-            f"\n\nThe rule's pick: wall `{best[0]}`, model `{best[1]}`, total miss "
-            f"{summaries[ranking[0]]['total']:.2f} +- {summaries[ranking[0]]['total_se']:.2f}, "
-            f"{summaries[ranking[0]]['met']} of 5 facts met.\n"
-            if best
-            else "\n"
-        )
-        + f"\nOne row per impact: `{study['name']}/rows.csv` (`python -m runner page "
-        f"{study['name']}` rebuilds this page from it).\n"
-    )

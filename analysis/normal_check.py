@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .page import pm
 from .seeds import SeedTable, seed_bootstrap, seed_tables
 
 DISK_NORMALS = ("apse", "first_touch", "impulse")
@@ -152,63 +151,3 @@ def robustness(rows: list[dict], resamples: int = 200, radius: float = 1.0) -> d
         entry["tilt_deg"] = table.mean("impulse_tilt_deg").tolist()
         out["lattices"][name] = entry
     return out
-
-
-def cell(entry: dict, quantity: str, j: int, normal: str) -> str:
-    """An angle's mean at the headline normal, or why it is withheld."""
-    if entry[f"{quantity}_robust"][j]:
-        return pm(entry[f"{quantity}_{normal}"][j], entry[f"{quantity}_{normal}_error"][j])
-    return (
-        f"withheld: normals differ by {entry[f'{quantity}_spread'][j]:.3f} > "
-        f"{entry[f'{quantity}_{normal}_error'][j]:.3f}"
-    )
-
-
-def section(checks: dict[str, dict | None]) -> list[str]:
-    """The page's section: per target and lattice, each angle at each normal."""
-    checks = {k: v for k, v in checks.items() if v}
-    if not checks:
-        return []
-    lines = [
-        "## The normal: is e a property of the collision or of the convention?",
-        "",
-        "e and beta depend on the normal they are measured at, and a deformable, rough "
-        "contact has no one normal. Two disks: the line of centres where the centres come "
-        "closest (apse, the headline), where the contact began (first touch), and the "
-        "impulse's normal (the direction of the impulse on the disk, the change of its "
-        "momentum, turned back by the tangential part that the spins' change gives; without "
-        "friction, the impulse's own direction). The wall: its fixed normal +y (the headline) "
-        "and the impulse's normal, from the tables (analysis/normal_check.py). Each normal "
-        "has its own incidence, cot gamma. An angle's e or beta is reported only where its "
-        "means at the normals agree within the seed error of the headline's mean (the spread, "
-        "largest less smallest, at most that error); elsewhere it is withheld. tilt: the "
-        "angle from the impulse's normal to the impulse's own direction (the friction's).",
-        "",
-    ]
-    for target, check in checks.items():
-        normals = check["normals"]
-        headline = normals[0]
-        for lattice, entry in check["lattices"].items():
-            heads = " | ".join(f"cot gamma, {NAMES[n]}" for n in normals)
-            e_heads = " | ".join(f"e, {NAMES[n]}" for n in normals)
-            lines += [
-                f"### {target}: {lattice}",
-                "",
-                f"| gamma (nominal) | {heads} | {e_heads} | e | beta | tilt, deg |",
-                "|---|" + "---|" * (2 * len(normals) + 3),
-            ]
-            for j, gamma in enumerate(entry["gamma_deg"]):
-                cots = " | ".join(f"{entry[f'cot_gamma_{n}'][j]:.3f}" for n in normals)
-                es = " | ".join(f"{entry[f'e_{n}'][j]:.3f}" for n in normals)
-                lines.append(
-                    f"| {gamma:g} | {cots} | {es} | {cell(entry, 'e', j, headline)} | "
-                    f"{cell(entry, 'beta', j, headline)} | {entry['tilt_deg'][j]:.1f} |"
-                )
-            robust_e, robust_beta = sum(entry["e_robust"]), sum(entry["beta_robust"])
-            lines += [
-                "",
-                f"e robust to the normal at {robust_e} of {len(entry['gamma_deg'])} angles, "
-                f"beta at {robust_beta}.",
-                "",
-            ]
-    return lines

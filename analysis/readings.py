@@ -30,8 +30,7 @@ from builder.study_names import (  # noqa: F401 (the readings by name live there
     wall_label,
 )
 
-from .render import render
-from .sections import failure_cause
+from .failures import failure_cause
 from .table import TIMINGS, write_csv
 
 # Choices that depart from the paper's text, for the rules' tie-break: its
@@ -79,7 +78,7 @@ class Setup:
 def study_rows(study, name: str) -> list[dict]:
     """Rows of a study's impacts, finished (impacts.csv's) and failed (their
     cause), each marked as reading ``name``: what a readings table keeps."""
-    from .report import read_failure
+    from .study_tables import read_failure
     from .table import collect
 
     jobs = study.jobs()
@@ -143,16 +142,3 @@ def read_record(folder: Path) -> dict:
 
 def write_record(record: dict, folder: Path) -> None:
     (Path(folder) / RECORD).write_text(json.dumps(record, indent=1) + "\n")
-
-
-def markdown_table(header: list[str], rows: list[list[str]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(row) + " |" for row in rows]
-    return "\n".join(lines)
-
-
-def page_text(title: str, record: dict, body: str) -> str:
-    """A readings page: its title, the command and machine that made its rows
-    (for rows made before the study file, the commit of the command and the
-    command that runs the same studies since), its body."""
-    return render("readings_page.md.j2", title=title, record=record, body=body)

@@ -27,7 +27,6 @@ from dataclasses import replace
 
 from .readings import ONE_BODY, REFERENCES, Setup
 
-TITLE = "Two disks against the symmetric references"
 COLUMNS = (
     "reading",
     "reference",
@@ -37,6 +36,7 @@ COLUMNS = (
     "gamma_deg",
     "cot_gamma",
     "vn",
+    "vn_in_c",
     "target",
     "target_held",
     "e",
@@ -83,9 +83,3 @@ def plan(choice: dict, study):
     if choice["reference"] not in ONE_BODY:
         return study
     return replace(study, vn=study.vn / 2.0, speeds=tuple(speed / 2.0 for speed in study.speeds))
-
-
-def page(rows: list[dict], setup: Setup, figures) -> str:
-    from .references_page import body
-
-    return body(rows, setup, figures)

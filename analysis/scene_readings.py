@@ -11,27 +11,12 @@ default (``rank``, which the study's re-run of the best also follows).
 
 from __future__ import annotations
 
-import itertools
-from pathlib import Path
-
 import numpy as np
 
 from .fits import Means, fit_walton, reduced_chi2, weights_floor
-from .readings import (
-    N_WALL,
-    WALL_FIXED,
-    WALL_KA,
-    Setup,
-    distance_from_text,
-    markdown_table,
-    wall_label,
-)
+from .readings import Setup, distance_from_text, wall_label
 from .table import NEAR_SIDE, mean_rows
 from .theory import walton_beta
-
-TITLE = "The readings of the scene"
-FIGURE = "scene_readings.png"
-NUMBER_WORDS = ("no", "one", "two", "three", "four", "five", "six")
 
 # The paper's three facts (MODEL.md section 8) and how near counts as agreeing:
 # e near 0.8 (its Walton fit fixes e = 0.8), beta0 near 0.56, and no contact
@@ -196,87 +181,6 @@ def rank_summaries(summaries: dict) -> list[str]:
     return [best] + [r for r in scored if r != best]
 
 
-def fmt(pair) -> str:
-    value, se = pair
-    return "-" if not np.isfinite(value) else f"{value:.3f} +- {se:.3f}"
-
-
-def table_row(reading: str, lattice: str, s: dict) -> list[str]:
-    walton = s.get("walton")
-    causes = "; ".join(f"{n} {c}" for c, n in sorted(s["causes"].items())) or "-"
-    if "total_miss" not in s:
-        return [reading, lattice, str(s["impacts"]), str(s["failed"])] + ["-"] * 13 + [causes]
-    return [
-        reading,
-        lattice,
-        str(s["impacts"]),
-        str(s["failed"]),
-        *(fmt(s[f"e {name}"]) for name, _, _ in BANDS),
-        f"{walton['mu']:.3f} +- {walton['mu_sd']:.3f}" if walton else "-",
-        f"{walton['beta0']:.3f} +- {walton['beta0_sd']:.3f}" if walton else "-",
-        f"{walton['chi2']:.1f}" if walton else "-",
-        f"{s['contact_time']:.1f}",
-        f"{s['touches']:g}",
-        f"{100 * s['ends_share']:.0f} %",
-        f"{s['seconds']:.2f}",
-        f"{s['steps']:.0f}",
-        f"{s['e_miss']:.3f}",
-        f"{s['beta0_miss']:.3f}",
-        f"{s['facts_met']}",
-        f"{s['total_miss']:.2f} +- {s['total_miss_se']:.2f}",
-        causes,
-    ]
-
-
-def draw(rows: list[dict], path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(len(N_WALL), 2, figsize=(11, 3.2 * len(N_WALL)), sharex=True)
-    colours = dict(zip(WALL_KA, ("tab:blue", "tab:orange", "tab:green")))
-    styles = dict(zip(WALL_FIXED, ("-", "--")))
-    for i, n_wall in enumerate(N_WALL):
-        for wall_ka, wall_fixed in itertools.product(WALL_KA, WALL_FIXED):
-            name = wall_label(n_wall, wall_ka, wall_fixed)
-            done = [
-                r
-                for r in rows
-                if r["reading"] == name and r["study_lattice"] == "random" and not r.get("error")
-            ]
-            if not done:
-                continue
-            means = mean_rows(done)
-            psi = [m["cot_gamma"] for m in means]
-            for ax, key in zip(axes[i], ("e", "beta")):
-                ax.errorbar(
-                    psi,
-                    [m[key] for m in means],
-                    standard_errors(done, key),
-                    color=colours[wall_ka],
-                    ls=styles[wall_fixed],
-                    marker="o",
-                    ms=3,
-                    label=f"ka {wall_ka if isinstance(wall_ka, str) else f'{wall_ka:g}x'}, "
-                    f"{wall_fixed} held",
-                )
-        axes[i][0].axhline(E_PAPER, color="grey", lw=0.8)
-        axes[i][1].axhline(BETA0_PAPER, color="grey", lw=0.8)
-        axes[i][0].set_ylabel(f"e, wall of {n_wall}" + (" points" if n_wall != "density" else ""))
-        axes[i][1].set_ylabel("beta")
-    for ax in axes[-1]:
-        ax.set_xscale("log")
-        ax.set_xlabel("cot gamma")
-    axes[0][1].legend(fontsize=7)
-    fig.suptitle(
-        "Random disk on every reading of the wall (grey: the paper's e = 0.8, beta0 = 0.56)"
-    )
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def label(choice: dict) -> str:
     """A combination's reading: its wall's name, ``points_ka_held``."""
     return wall_label(choice["n_wall"], choice["wall_ka"], choice["wall_fixed"])
@@ -294,84 +198,3 @@ def summaries_of(rows: list[dict], labels: list[str], lattice: str = "random") -
 def rank(rows: list[dict], setup: Setup) -> list[str]:
     """The random-disk readings from best to worst by the rule."""
     return rank_summaries(summaries_of(rows, [label(c) for c in setup.choices]))
-
-
-def page(rows: list[dict], setup: Setup, figures: Path) -> str:
-    """The page's body; its figure goes into ``figures``."""
-    labels = [label(c) for c in setup.choices]
-    summaries = summaries_of(rows, labels)
-    ranking = rank_summaries(summaries)
-    study, rerun = setup.study, setup.rerun
-    top, top_samples = rerun.get("best", 0), rerun.get("samples")
-    then = rerun.get("then_lattices", ())
-    then_best = rerun.get("then_best", 0)
-    more = f" ({top} best readings of that first pass to {top_samples} samples)" if top else ""
-    header = [
-        "reading (points_ka_held)",
-        "disk",
-        "impacts",
-        "failed",
-        *(f"e, cot gamma {name}" for name, _, _ in BANDS),
-        "Walton mu",
-        "Walton beta0",
-        "chi2/dof",
-        "median contact, R/c",
-        "median touches",
-        "near a side",
-        "LAMMPS s",
-        "steps",
-        "e miss",
-        "beta0 miss",
-        "facts met",
-        "total miss",
-        "failures by cause",
-    ]
-    table = [table_row(r, "random", summaries[r]) for r in labels]
-    # the readings that lattice ran on: the best of the ranking when it ran,
-    # which the weights of the fits (analysis.fits.means) have moved since
-    for lattice in then:
-        for reading in ranking:
-            these = [r for r in rows if r["reading"] == reading and r["study_lattice"] == lattice]
-            if these:
-                table.append(table_row(reading, lattice, summarise(these)))
-    order = "\n".join(
-        f"{i + 1}. `{r}`: total miss {summaries[r]['total_miss']:.2f} +- "
-        f"{summaries[r]['total_miss_se']:.2f}, {summaries[r]['facts_met']} facts met, "
-        f"{distance_from_text(r)} choice(s) away from the paper's text"
-        for i, r in enumerate(ranking)
-    )
-    draw(rows, figures / FIGURE)
-    options = study["options"]
-    then_text = "".join(
-        f"then the {lattice} disk on the {NUMBER_WORDS[then_best]} best readings of the "
-        "ranking when it ran (each angle's fit weighted with a floor then, analysis/fits.py)"
-        for lattice in then
-    )
-    return (
-        f"Random disk (800 points), {study['angles']} angles from 5.7 to 80.5 degrees x "
-        f"{study['samples']} samples (seeds 1 on) per reading{more}, v_n = 0.1 c, velocity Verlet "
-        f"at dt = {options['dt']:g} R/c with `{options['springs']}` springs (a step safe for "
-        f"every reading); {then_text}. A reading is `points_ka_held`: the wall's "
-        "points (800, 1600, or the disk's number `density`), its spring constant over the "
-        "disk's (`1ka`, `10ka`, or `same-c`, the disk's wave speed), the points held (`sides`, "
-        "`sides-bottom`). LAMMPS s and steps are medians per impact, measured while other jobs "
-        "shared the machine's two cores (`harmonic/quartic`, the default springs since, gives "
-        "the same forces to 1e-12).\n\n"
-        "The paper's facts (MODEL.md section 8) and how each reading misses them: **e miss** is "
-        "the root mean square over the angles of (mean e - 0.8); **beta0 miss** is |Walton beta0 "
-        "- 0.56|; **near a side** is the share of contacts whose disk centre came within 1 R of a "
-        "fixed side of the wall, or that slid off its end. A fact is met when its miss is within "
-        f"its 'near': {E_NEAR} for e, {BETA0_NEAR} for beta0, {ENDS_NEAR:.0%} for the ends (the "
-        "study's rule for the angles clear of the ends). **Total miss** is the sum of the three "
-        "misses, each in units of its 'near', with its standard error (from those of the mean e "
-        "per angle, the bootstrap of beta0 and the binomial share). The rule (MODEL.md section "
-        "8): the default is the reading of least total miss; where another agrees as well (its "
-        "total miss within one combined standard error of the least), the one with the fewest "
-        "choices away from the paper's text (800 points, one ka, the sides held).\n\n"
-        + markdown_table(header, table)
-        + "\n\nRanking of the random-disk readings:\n\n"
-        + order
-        + f"\n\n![e and beta against cot gamma per reading]({setup.figures}/{FIGURE})\n\n"
-        f"One row per impact: `{study['name']}/rows.csv` (`python -m runner page "
-        f"{study['name']}` rebuilds this page and the figure from it).\n"
-    )

@@ -1,4 +1,4 @@
-"""e and beta against the impact speed: the speed study's numbers and page.
+"""e and beta against the impact speed: the speed study's numbers (its page: pages.speed).
 
 A speed study (``runner study speed``) runs every lattice at a few angles and
 several normal approach speeds v_n, with the same seeds at every speed and
@@ -31,8 +31,10 @@ from scipy.optimize import curve_fit
 
 from builder.materials import calibrated
 
+from .failures import genuine
 from .measures import mu_eff
 from .seeds import RNG_SEED, SeedTable, seed_bootstrap, seed_tables
+from .table import NEAR_SIDE
 
 # A power law "holds" over a run of speeds whose fit has a reduced chi^2 at
 # most this; the run must hold at least POWER_LAW_POINTS speeds.
@@ -218,3 +220,79 @@ def estimates(rows: list[dict], resamples: int = 200) -> dict:
 def write_json(numbers: dict, path: Path) -> None:
     """speed.json, with null where a number is undefined (JSON has no NaN)."""
     path.write_text(json.dumps(numbers, indent=1).replace("NaN", "null") + "\n")
+
+
+# Gerl and Zippelius's trend and order count where e differs by more than
+# this many combined errors.
+BEYOND = 2.0
+
+
+def by_shear_over_bulk(numbers: dict, lattice_specs: dict) -> list[dict]:
+    """The lattices of ``numbers`` that ``lattice_specs`` (builder.materials)
+    has, in increasing shear over bulk modulus G / B, each with its G / B."""
+    ratio = {
+        k: shear_over_bulk(s["lattice"], s.get("k2_over_k1")) for k, s in lattice_specs.items()
+    }
+    present = [k for k in numbers["lattices"] if k in ratio]
+    return [{"lattice": k, "ratio": ratio[k]} for k in sorted(present, key=lambda k: ratio[k])]
+
+
+def trend(numbers: dict, lattices: list[str]) -> dict:
+    """e at near-normal incidence from the slowest to the fastest impact, per
+    lattice (``e0``, ``e1``, and the change ``drop`` in combined errors), and
+    on how many lattices it falls by more than BEYOND errors."""
+    out, falls = [], 0
+    for k in lattices:
+        data = numbers["lattices"][k]
+        e0, e1 = data["e"][0][0], data["e"][-1][0]
+        s0, s1 = data["e_error"][0][0], data["e_error"][-1][0]
+        drop = float((e0 - e1) / np.hypot(s0, s1))
+        falls += drop > BEYOND
+        out.append({"lattice": k, "e0": e0, "e1": e1, "drop": drop})
+    return {"lattices": out, "falls": int(falls)}
+
+
+def order_counts(numbers: dict, by_ratio: list[str]) -> list[dict]:
+    """Per speed, the pairs of lattices whose e differs by more than BEYOND
+    combined errors: how many are in the order of G / B (the lower G / B,
+    the lower e) and how many against it."""
+    out = []
+    for i, v in enumerate(numbers["speeds"]):
+        e = [numbers["lattices"][k]["e"][i][0] for k in by_ratio]
+        s = [numbers["lattices"][k]["e_error"][i][0] for k in by_ratio]
+        agree = against = 0
+        for a in range(len(e)):
+            for b in range(a + 1, len(e)):
+                if abs(e[b] - e[a]) > BEYOND * np.hypot(s[a], s[b]):
+                    agree += e[b] > e[a]
+                    against += e[b] < e[a]
+        out.append({"vn": v, "agree": int(agree), "against": int(against)})
+    return out
+
+
+def outcomes(rows: list[dict], failed: list[dict], speeds: list[float]) -> list[dict]:
+    """Per speed: the impacts, those that failed, those whose energy drift
+    exceeds the guard, and the largest |drift|."""
+    out = []
+    for v in speeds:
+        mine = [r for r in rows if math.isclose(float(r["vn"]), v)]
+        lost = [f for f in genuine(failed) if math.isclose(float(f.get("vn") or "nan"), v)]
+        drift = [abs(float(r["energy_drift"])) for r in mine] or [float("nan")]
+        above = sum(str(r["drift_exceeded"]) == "True" for r in mine)
+        counts = {"impacts": len(mine), "failed": len(lost), "above": above}
+        out.append({"vn": v, **counts, "drift": max(drift)})
+    return out
+
+
+def near_side_counts(rows: list[dict]) -> list[dict]:
+    """Per lattice, speed and angle: the impacts, and those whose disk centre
+    came within 1 R of a held side (analysis.table.NEAR_SIDE)."""
+    out: dict = {}
+    for r in rows:
+        key = (f"{r['study_lattice']}, v_n {float(r['vn']):g}", float(r["gamma_deg"]))
+        entry = out.setdefault(
+            key, {"study_lattice": key[0], "gamma_deg": key[1], "near_side": 0, "samples": 0}
+        )
+        entry["samples"] += 1
+        entry["near_side"] += float(r["side_clearance"]) < NEAR_SIDE
+    return [m for m in out.values() if m["near_side"]]

@@ -8,12 +8,12 @@ import subprocess
 import sys
 from pathlib import Path
 
-from analysis.readings import markdown_table  # noqa: F401 (the benchmarks' tables)
 from builder.cli import OneLineParser
 from ground.checks import OutFolder, Range, require_out_folder
 from ground.errors import InputError
 from ground.paths import ROOT, runs_folder
 from ground.provenance import machine
+from pages.text import markdown_table  # noqa: F401 (the benchmarks' tables)
 
 # Where a benchmark's page and tables go: its run folder, unless --docs asks
 # for the committed one (make bench and friends do).

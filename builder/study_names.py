@@ -2,7 +2,7 @@
 name (MODEL.md section 8), the kinds of page and the sections of a results
 page. Reading a study file (runner.study_file) checks its names against
 these without importing what makes the pages (analysis.kinds,
-analysis.sections, analysis.readings use them from here).
+pages.sections, analysis.readings use them from here).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ READINGS_KINDS = (
 )
 KINDS = ("results", *READINGS_KINDS)
 # The sections a results page may have, in the order it has them
-# (analysis.report.results_page; a study file's `sections` picks some).
+# (pages.results.results_page; a study file's `sections` picks some).
 SECTIONS = (
     "findings",  # a binary study's (analysis.binary_findings)
     "earlier_runs",
@@ -35,7 +35,7 @@ SECTIONS = (
     "wall_ends",
     "grazing",
     "readings",
-    "wall_comparison",  # a binary study's (analysis.binary_page)
+    "wall_comparison",  # a binary study's (pages.binary)
     "normals",  # a binary study's: e and beta at every normal (analysis.normal_check)
 )
 

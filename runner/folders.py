@@ -41,8 +41,8 @@ def state(job: dict) -> str:
 
 
 def failed_state(job: dict) -> str:
-    """A failed impact's state: failed, or stuck (analysis.sections.impact_state)."""
-    from analysis.report import read_failure
+    """A failed impact's state: failed, or stuck (analysis.failures.impact_state)."""
+    from analysis.study_tables import read_failure
 
     return read_failure(job)["state"]
 

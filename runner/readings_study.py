@@ -18,11 +18,12 @@ import argparse
 from dataclasses import asdict, replace
 from pathlib import Path
 
-from analysis.kinds import kind_module, readings_page
+from analysis.failures import impact_state
+from analysis.kinds import kind_module
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
-from analysis.sections import impact_state
 from ground.checks import require_out_folder
 from ground.errors import InputError
+from pages.kinds import readings_page
 
 from .provenance import machine
 from .study import ROOT, runs_folder

@@ -253,7 +253,7 @@ def run_one_study(args, described: StudyFile | None, study: Study | None = None)
     """One study (``study``, if already made from ``args``; ``described`` its
     file, None for a combination of a file's axes): its impacts, then its
     tables and page; or its page from tables alone (--from-tables)."""
-    from analysis.report import report, report_from_tables
+    from pages.report import report, report_from_tables
 
     from .driver import run_study
 

@@ -5,7 +5,7 @@
     readings = []                    # docs/<name>/ tables of the same study under
                                      # other readings, which the page tabulates
     sections = [...]                 # what its page reports, in order (default:
-                                     # every one of analysis.sections.SECTIONS)
+                                     # every one of builder.study_names.SECTIONS)
     [grid]
     lattices = ["random", "triangular", "square_nu0.1", "square_nu0.3"]
     angles = 16                      # or cot_gamma = [...] or gamma_deg = [...]
@@ -107,7 +107,7 @@ class StudyFile:
     page: str = ""
     axes: dict = field(default_factory=dict)
     readings: tuple[str, ...] = ()
-    sections: tuple[str, ...] = ()  # of analysis.sections.SECTIONS; () for all
+    sections: tuple[str, ...] = ()  # of builder.study_names.SECTIONS; () for all
     kind: str = "results"  # of analysis.kinds.KINDS
     sweep: str = "cross"  # of SWEEPS
     rerun: dict = field(default_factory=dict)  # [rerun], for a readings kind

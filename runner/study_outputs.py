@@ -144,7 +144,8 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
     """A study's page (and its tables, with ``out``: into ``out``) from its
     committed tables; the tables of the readings it tabulates are brought to
     this version's format from themselves first. Returns the page."""
-    from analysis.report import report_from_tables, tidy_tables
+    from analysis.study_tables import tidy_tables
+    from pages.report import report_from_tables
 
     from .readings_study import remake_page as remake_readings_page
 
@@ -200,7 +201,7 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
 def remake_tabulating_page(described: StudyFile, readings: dict[str, Path]) -> None:
     """The study's page in docs/ again from its committed tables, with the
     table of its readings."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     page = DOCS / f"{described.page}.md"
     report_from_tables(

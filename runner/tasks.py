@@ -25,8 +25,8 @@ import socket
 import time
 from pathlib import Path
 
+from analysis.failures import impact_state
 from analysis.result import write_json_atomically
-from analysis.sections import impact_state
 from ground.launch import lammps_error
 
 from .folders import STARTED, prune
@@ -46,7 +46,7 @@ WORKER_PHASES = ("build", "lammps", "rest")
 def fail(job: dict, message: str) -> dict:
     """Record the impact as without a result (failed.json), with its state:
     failed, or stuck (its disk stayed on the wall, a physical outcome:
-    analysis.sections.impact_state), and say so."""
+    analysis.failures.impact_state), and say so."""
     folder = Path(job["folder"])
     folder.mkdir(parents=True, exist_ok=True)
     state = impact_state(message)

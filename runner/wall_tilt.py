@@ -25,13 +25,13 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.readings import markdown_table
-from analysis.report import shown_path
 from analysis.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
 from ground.paths import ROOT
+from pages.report import shown_path
+from pages.text import markdown_table
 
 from .impact import run_impact
 from .provenance import machine

@@ -20,7 +20,7 @@ import pytest
 from ground.paths import ROOT
 
 # The packages that must not import runner (the study runner sits above them).
-BELOW_RUNNER = ("builder", "analysis", "reference", "calibration")
+BELOW_RUNNER = ("builder", "analysis", "pages", "reference", "calibration")
 
 
 def packages() -> list[str]:
@@ -153,6 +153,11 @@ def test_cycles_are_found():
 @pytest.mark.parametrize("package", BELOW_RUNNER)
 def test_no_import_of_runner_from_below(package):
     assert imports_of(package, "runner") == []
+
+
+def test_no_import_of_pages_from_analysis():
+    """Measurement apart from pages: analysis/ computes numbers, pages/ writes them."""
+    assert imports_of("analysis", "pages") == []
 
 
 @pytest.mark.parametrize("other", sorted(set(packages()) - {"ground"}))

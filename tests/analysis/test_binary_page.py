@@ -1,4 +1,4 @@
-"""The binary study's comparison with the wall (analysis.binary_page), and
+"""The binary study's comparison with the wall (analysis.binary_comparison, pages.binary), and
 its committed page made again from the committed tables."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from analysis.binary_page import comparison, verdict
+from analysis.binary_comparison import comparison, verdict
 from tests.helpers import ROOT
 from tests.synthetic import impact_rows
 
@@ -61,7 +61,7 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
     """docs/binary_grazing.md from docs/binary_grazing/ and the walls'
     tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
     the same page, but for where it says its files are."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
     from runner.studies import study_file
 
     docs = ROOT / "docs"
@@ -121,7 +121,7 @@ def test_a_grip_of_its_own_between_two_disks_differs_and_counts_its_systematic()
 def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
     """Two disks whose measured cot gamma is half the wall's at every angle:
     each target is fitted only at the angles inside the common range."""
-    from analysis.binary_page import common_range
+    from analysis.binary_comparison import common_range
     from analysis.seeds import seed_tables
 
     wall = impact_rows("random", WALL_BETA, seeds=6)
@@ -140,7 +140,7 @@ def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
 def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
     """The comparison's row shows e only where the normals' check finds it
     robust on both targets; elsewhere 'withheld', and its verdict too."""
-    from analysis.binary_page import section
+    from pages.binary import section
 
     wall = impact_rows("random", WALL_BETA, seeds=8)
     numbers = comparison(binary(wall, 0.0), wall, resamples=10)
@@ -156,7 +156,7 @@ def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
             }
         },
     }
-    lines = section({"w": numbers}, "figures", {"two disks (this study)": check})
+    lines = section({"w": numbers}, "figures", {"two disks (this study)": check}).splitlines()
     rows = [x for x in lines if x.startswith("| ") and not x.startswith("| gamma")]
     rows = [x for x in rows if x.split(" | ")[0].lstrip("| ").replace(".", "").isdigit()]
     assert "withheld" in rows[2] and rows[2].count("withheld") == 3  # e disks, difference, verdict

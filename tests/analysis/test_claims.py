@@ -8,9 +8,9 @@ import json
 import pytest
 
 from analysis.claims import verdict
-from analysis.page import wall_reading
-from analysis.report import report_from_tables
+from analysis.poisson import common_wall
 from analysis.theory import walton_beta
+from pages.report import report_from_tables
 from tests.synthetic import impact_rows, write_tables
 
 LATTICES = ["random", "triangular", "square_nu0.1", "square_nu0.3"]
@@ -109,16 +109,16 @@ def test_the_nu_verdict_names_what_else_differs(made):
 def test_one_wall_is_read_from_the_tables_or_study_json():
     pair = ("square_nu0.1", "square_nu0.3")
     # the wall's ka the same multiple of each disk's: two walls
-    common, text = wall_reading({}, study_rows((1.0, 1.0)), pair)
-    assert common is False and "of its own stiffness" in text
+    wall = common_wall({}, study_rows((1.0, 1.0)), pair)
+    assert wall["common"] is False and wall["same_multiple"]
     # the wall's ka in its own terms (another multiple of each disk's), the same points
-    common, text = wall_reading({}, study_rows((0.9, 1.1)), pair)
-    assert common is True and "one wall" in text
+    wall = common_wall({}, study_rows((0.9, 1.1)), pair)
+    assert wall["common"] is True and not wall["same_multiple"] and wall["same_points"]
     rows = study_rows((0.9, 1.1))
     first = next(i for i, r in enumerate(rows) if r["study_lattice"] == pair[0])
     rows[first] = dict(rows[first], n_wall_points=1)  # a seed whose walls differ
-    assert wall_reading({}, rows, pair)[0] is False
-    assert wall_reading({"common_wall": True}, study_rows(), pair)[0] is True
+    assert common_wall({}, rows, pair)["common"] is False
+    assert common_wall({"common_wall": True}, study_rows(), pair)["common"] is True
 
 
 @pytest.mark.parametrize(

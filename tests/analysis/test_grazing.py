@@ -29,7 +29,7 @@ def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
     """Synthetic e(tan gamma) with a known peak, seeds sharing an offset: the
     peak comes back within its bootstrap error, and e > 1 is called
     significant for a peak at 1.1 and not for one at 1.0."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     def e_of(top):
         return lambda psi: top - 0.004 * (1.0 / psi - 4.0) ** 2
@@ -61,8 +61,8 @@ def test_e_above_one_is_significant_only_beyond_its_errors(tmp_path):
 def test_a_reading_is_a_row_of_the_page_with_what_differs(tmp_path):
     """Two readings of one synthetic study (another wall stiffness, a 0.1
     speed): one row each, naming what differs, with its own peak."""
-    from analysis.grazing import reading_differences
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
+    from pages.text import reading_differences
 
     def rows_peaking_at(top: float) -> list[dict]:
         return impact_rows(

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from analysis import references
-from analysis.references_page import group_key, grouped, joint_numbers, pair_speed
+from pages.references import group_key, grouped, joint_numbers, pair_speed
 from runner.study import Study
 
 
@@ -49,7 +49,7 @@ def test_differences_resample_whole_seeds_of_both_references_together():
     numbers = joint_numbers(grouped(rows), resamples=100)
     a, b = group_key("image", 0.1), group_key("surface", 0.1)
     value, error = numbers["value"], numbers["error"]
-    assert value[("d_e_normal", a, b)] == pytest.approx(0.02)
+    assert value[("d_e_first", a, b)] == pytest.approx(0.02)
     assert value[("d_contact_time", a, b)] == pytest.approx(0.2)
-    assert error[("d_e_normal", a, b)] < 1e-12
-    assert error[("e_normal", a)] > 1e-3  # each alone scatters with its disks
+    assert error[("d_e_first", a, b)] < 1e-12
+    assert error[("e_first", a)] > 1e-3  # each alone scatters with its disks

@@ -44,7 +44,8 @@ def test_near_side_counts_and_clear_angles():
 
 
 def test_failures_are_grouped_by_cause_with_their_angles_and_seeds():
-    from analysis.report import failure_causes, failure_section
+    from analysis.failures import failure_causes
+    from pages.sections import failure_section
 
     slid = (
         "ERROR: the disk slid off the end of the wall before it rebounded, at time {}: the "

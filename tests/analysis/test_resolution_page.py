@@ -1,10 +1,11 @@
-"""The resolution page's extrapolation and plan (analysis.resolution, resolution_page)."""
+"""The resolution page's extrapolation and plan (analysis.resolution, pages.resolution)."""
 
 import numpy as np
 import pytest
 
 from analysis import resolution
-from analysis.resolution_page import extrapolate, verdict
+from analysis.resolution import extrapolate
+from pages.resolution import verdict
 
 
 def test_a_line_in_the_spacing_gives_back_its_intercept():

@@ -119,7 +119,7 @@ def speed_rows(p_of: dict, seeds: int = 12) -> list[dict]:
 
 
 def test_the_speed_page_comes_back_from_its_tables(tmp_path):
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     rows = speed_rows({"random": 0.5, "triangular": 0.8})
     tables = write_tables(

@@ -117,12 +117,12 @@ def test_a_result_on_another_wall_is_set_aside_and_runs_again(tmp_path):
 
 def test_a_study_records_its_common_wall(tmp_path, monkeypatch):
     """study.json says that the lattices met one wall; the results page reads it."""
-    from analysis.page import wall_reading
+    from analysis.poisson import common_wall
 
     monkeypatch.setenv("IMPACT_RUNS", str(tmp_path))
     study = Study("common", n_disk=200, angles=2, samples=1)
     study.prepare()
     record = json.loads((study.folder / "study.json").read_text())
     assert record["common_wall"] is True
-    assert wall_reading(record, [], ("square_nu0.1", "square_nu0.3"))[0] is True
+    assert common_wall(record, [], ("square_nu0.1", "square_nu0.3"))["common"] is True
     assert Study.from_json(study.folder / "study.json") == study  # not a field of the grid

@@ -242,7 +242,7 @@ def no_work(monkeypatch, module) -> None:
             "runner.clusters",
             "ground.launch",
             "builder.assembly",
-            "analysis.report",
+            "pages.report",
             "calibration.table",
             "calibration.stretch",
             "reference.run",

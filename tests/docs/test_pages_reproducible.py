@@ -37,7 +37,15 @@ def test_every_study_with_a_page_has_its_tables():
 
 # pages that take more than ~10 s to make again (pytest --durations=0 on 2026-11-25:
 # 26 to 368 s each on the two cores loaded by other runs; the others under 11 s)
-SLOW_PAGES = {"binary", "binary_grazing", "model_readings", "paper", "resolution", "grazing"}
+SLOW_PAGES = {
+    "binary",
+    "binary_grazing",
+    "binary_references",
+    "model_readings",
+    "paper",
+    "resolution",
+    "grazing",
+}
 
 
 @pytest.mark.parametrize(

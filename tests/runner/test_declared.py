@@ -13,11 +13,11 @@ from dataclasses import fields
 
 import pytest
 
-from analysis.report import made_by
 from builder.__main__ import parser as builder_parser
 from builder.run_options import RUN_OPTIONS
 from builder.scene import SCENE_OPTIONS, SceneSpec
 from ground.errors import InputError
+from pages.command import made_by
 from runner.__main__ import parser as runner_parser
 from runner.options import RunOptions
 from runner.study import STUDY_SCENE, Study
@@ -73,7 +73,7 @@ def test_a_run_number_outside_its_range_is_refused_by_the_options_and_the_comman
 
 
 def test_made_by_gives_each_committed_pages_command():
-    """The "made by" line that analysis.report derives from the declarations
+    """The "made by" line that pages.command derives from the declarations
     is, for every committed results page, the line the page states."""
     checked = 0
     for page in sorted((ROOT / "docs").glob("*.md")):

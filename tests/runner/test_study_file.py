@@ -258,7 +258,7 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
 @pytest.mark.slow
 def test_a_page_has_the_sections_its_file_names(tmp_path):
     """sections = [...]: the page has those, in that order, and no other."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     path = tmp_path / "short.toml"
     path.write_text('page = "short"\nsections = ["fits", "claims"]\n')

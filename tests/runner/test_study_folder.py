@@ -48,7 +48,7 @@ def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
 def test_the_page_comes_back_from_the_tables_alone(uninterrupted, tmp_path):
     """report_from_tables remakes a study's page and means from impacts.csv,
     failed.csv and study.json, with no run folder (docs/results/ for the paper)."""
-    from analysis.report import report_from_tables
+    from pages.report import report_from_tables
 
     folder = RUNS / "test_study_whole"
     tables = tmp_path / "tables"

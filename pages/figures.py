@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .table import near_the_ends
-from .theory import Compliant, compliant_beta, walton_beta
+from analysis.table import near_the_ends
+from analysis.theory import Compliant, compliant_beta, walton_beta
 
 LABELS = {
     "random": "random",

@@ -1,5 +1,5 @@
 """What a binary study's page finds, in sentences whose every number comes
-from its fits.json (analysis/templates/binary_findings.md.j2): the aim, the
+from its fits.json (pages/templates/binary_findings.md.j2): the aim, the
 normals' check, e and friction beside the wall, and e > 1 at grazing angles,
 each at the significance its errors (seed and systematic, and the look-
 elsewhere of a chosen peak) support."""
@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .binary_page import THIS_STUDY
-from .grazing import SIGNIFICANT, significant
+from analysis.binary_comparison import THIS_STUDY
+from analysis.grazing import SIGNIFICANT, significant
+
 from .render import render
 
 

@@ -17,18 +17,22 @@ from pathlib import Path
 
 import numpy as np
 
-from .binary_page import verdict
-from .estimates import study_estimates
-from .normal_check import robustness
-from .readings import ONE_BODY, REFERENCES, Setup, markdown_table
-from .render import render
-from .seeds import seed_bootstrap, seed_tables
+from analysis.binary_comparison import verdict
+from analysis.estimates import study_estimates
+from analysis.failures import impact_state
+from analysis.normal_check import robustness
+from analysis.readings import ONE_BODY, REFERENCES, Setup
+from analysis.seeds import seed_bootstrap, seed_tables
 
+from .render import render
+from .text import markdown_table
+
+TITLE = "Two disks against the symmetric references"
+FIGURE = "references_speed.png"  # e and the contact time against the pair's speed
 ORDER = tuple(REFERENCES)  # pair, image, image-held, surface, wall
-FIGURE = "references_speed.png"
 RESAMPLES = 200
 CHI2_LIMIT = 2.0
-NEAR_NORMAL_COT = 1.0  # e_normal: the mean e over the angles with cot gamma >= 1
+NAMES = {"e_first": "e", "contact_time": "the contact time", "mu": "Walton's mu"}
 # The comparisons: (question, reference, reference)
 QUESTIONS = (
     ("the two-body mapping", "image", "surface"),
@@ -61,14 +65,10 @@ def grouped(rows: list[dict]) -> dict[str, list[dict]]:
     return out
 
 
-def near_normal(table, quantity: str) -> float:
-    keep = 1.0 / np.tan(np.radians(table.gamma_deg)) >= NEAR_NORMAL_COT
-    return float(np.nanmean(table.mean(quantity)[keep]))
-
-
 def joint_numbers(groups: dict[str, list[dict]], resamples: int) -> dict:
-    """e near normal incidence and the contact time at the first angle, per
-    group, and the differences QUESTIONS asks, with joint seed errors."""
+    """e and the contact time at the first angle (the nearest normal
+    incidence), per group, and the differences QUESTIONS asks, with joint
+    seed errors."""
     rows = [row for group in groups.values() for row in group]
     tables = seed_tables(rows, ("e", "beta", "contact_time"))
     speeds = sorted({float(k.split("@")[1]) for k in groups})
@@ -76,13 +76,13 @@ def joint_numbers(groups: dict[str, list[dict]], resamples: int) -> dict:
     def statistic(ts) -> dict:
         out = {}
         for key, table in ts.items():
-            out[("e_normal", key)] = near_normal(table, "e")
+            out[("e_first", key)] = float(table.mean("e")[0])
             out[("contact_time", key)] = float(table.mean("contact_time")[0])
         for speed in speeds:
             for _, a, b in QUESTIONS:
                 ka, kb = group_key(a, speed), group_key(b, speed)
                 if ka in ts and kb in ts:
-                    for q in ("e_normal", "contact_time"):
+                    for q in ("e_first", "contact_time"):
                         out[(f"d_{q}", ka, kb)] = out[(q, ka)] - out[(q, kb)]
         return out
 
@@ -138,7 +138,7 @@ def angle_table(checks: dict[str, dict | None], speed: float) -> str:
     return markdown_table(header, lines)
 
 
-def draw(numbers: dict, speeds: list[float], figures: Path) -> None:
+def draw(numbers: dict, speeds: list[float], figure: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -148,11 +148,11 @@ def draw(numbers: dict, speeds: list[float], figures: Path) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
     for reference in ORDER:
         keys = [group_key(reference, s) for s in speeds]
-        shown = [(s, k) for s, k in zip(speeds, keys, strict=True) if ("e_normal", k) in value]
+        shown = [(s, k) for s, k in zip(speeds, keys, strict=True) if ("e_first", k) in value]
         if not shown:
             continue
         x = [s for s, _ in shown]
-        for ax, q in zip(axes, ("e_normal", "contact_time"), strict=True):
+        for ax, q in zip(axes, ("e_first", "contact_time"), strict=True):
             ax.errorbar(
                 x,
                 [value[(q, k)] for _, k in shown],
@@ -162,18 +162,29 @@ def draw(numbers: dict, speeds: list[float], figures: Path) -> None:
                 label=reference,
             )
     for ax, label in zip(
-        axes, ("e, cot gamma >= 1", "contact time, R/c, first angle"), strict=True
+        axes, ("e at the first angle", "contact time, R/c, first angle"), strict=True
     ):
         ax.set_xscale("log")
         ax.set_xlabel("the pair's relative speed v_n, c")
         ax.set_ylabel(label)
     axes[0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(figures / FIGURE, dpi=110)
+    fig.savefig(figure, dpi=110)
     plt.close(fig)
 
 
-def body(rows: list[dict], setup: Setup, figures) -> str:
+def first_robust(checks: dict[str, dict | None], key: str) -> tuple[bool, float]:
+    """Whether the first angle's e of a group is robust to the normal, and
+    by how much its normals differ."""
+    check = checks.get(key)
+    if not check:
+        return False, float("nan")
+    entry = next(iter(check["lattices"].values()))
+    return bool(entry["e_robust"][0]), float(entry["e_spread"][0])
+
+
+def body(rows: list[dict], setup: Setup, figures: Path, figure: str) -> str:
+    """The page's body; its figure ``figure`` into ``figures``."""
     done = finished(rows)
     groups = grouped(done)
     speeds = sorted({float(k.split("@")[1]) for k in groups})
@@ -184,7 +195,10 @@ def body(rows: list[dict], setup: Setup, figures) -> str:
     present = [r for r in ORDER if any(group_key(r, s) in groups for s in speeds)]
 
     def cell(q: str, key: str) -> str:
-        return plus_minus(value[(q, key)], error[(q, key)], 3 if q == "e_normal" else 2)
+        robust, spread = first_robust(checks, key)
+        if q == "e_first" and not robust:
+            return f"withheld (normals differ by {spread:.3f})"
+        return plus_minus(value[(q, key)], error[(q, key)], 3 if q == "e_first" else 2)
 
     speed_rows = {
         q: [
@@ -194,7 +208,7 @@ def body(rows: list[dict], setup: Setup, figures) -> str:
             ]
             for s in speeds
         ]
-        for q in ("e_normal", "contact_time")
+        for q in ("e_first", "contact_time")
     }
     mu_rows = []
     for s in speeds:
@@ -218,57 +232,50 @@ def body(rows: list[dict], setup: Setup, figures) -> str:
             ka, kb = group_key(a, s), group_key(b, s)
             if ka not in groups or kb not in groups:
                 continue
-            for q, digits in (("e_normal", 3), ("contact_time", 2)):
+            for q, digits in (("e_first", 3), ("contact_time", 2)):
                 d, err = value[(f"d_{q}", ka, kb)], error[(f"d_{q}", ka, kb)]
-                comparison_rows.append(
-                    [
-                        f"{s:g}",
-                        question,
-                        f"{a} - {b}",
-                        q,
-                        plus_minus(d, err, digits),
-                        verdict(d, err),
-                    ]
-                )
+                word = verdict(d, err)
+                robust = first_robust(checks, ka)[0] and first_robust(checks, kb)[0]
+                if q == "e_first" and not robust:
+                    word = "withheld (an e not robust to the normal)"
+                said = plus_minus(d, err, digits)
+                comparison_rows.append([f"{s:g}", question, f"{a} - {b}", NAMES[q], said, word])
             d_mu = fits[ka]["mu"] - fits[kb]["mu"]
             e_mu = float(np.hypot(fits[ka]["error"], fits[kb]["error"]))
-            comparison_rows.append(
-                [
-                    f"{s:g}",
-                    question,
-                    f"{a} - {b}",
-                    "Walton's mu",
-                    plus_minus(d_mu, e_mu),
-                    verdict(d_mu, e_mu),
-                ]
-            )
-    draw(numbers, speeds, Path(figures))
+            said, word = plus_minus(d_mu, e_mu), verdict(d_mu, e_mu)
+            comparison_rows.append([f"{s:g}", question, f"{a} - {b}", NAMES["mu"], said, word])
+    draw(numbers, speeds, Path(figures) / figure)
     findings = []
     for question, a, b in QUESTIONS:
         said = []
-        for q in ("e_normal", "contact_time", "Walton's mu"):
+        for q in NAMES.values():
             verdicts = [r[5] for r in comparison_rows if r[1] == question and r[3] == q]
             if verdicts:
                 counts = {w: verdicts.count(w) for w in ("same", "undecided", "differs")}
+                withheld = len(verdicts) - sum(counts.values())
                 said.append(
                     f"{q}: the same at {counts['same']}, undecided at {counts['undecided']}, "
-                    f"differs at {counts['differs']} of {len(verdicts)} speeds"
+                    f"differs at {counts['differs']}"
+                    + (f", withheld at {withheld}" if withheld else "")
+                    + f" of {len(verdicts)} speeds"
                 )
         if said:
             findings.append(f"**{question}** ({a} against {b}): " + "; ".join(said))
     return render(
         "references.md.j2",
         study=setup.study,
+        angles=[f"{g:g}" for g in sorted({float(r["gamma_deg"]) for r in done})],
         impacts=len(rows),
-        failed=len(rows) - len(done),
+        failed=sum(impact_state(r["error"]) == "failed" for r in rows if r.get("error")),
+        stuck=sum(impact_state(r["error"]) == "stuck" for r in rows if r.get("error")),
         resamples=RESAMPLES,
         chi2_limit=CHI2_LIMIT,
         references=present,
         one_body=ONE_BODY,
         speeds=[f"{s:g}" for s in speeds],
         figures=setup.figures,
-        figure=FIGURE,
-        e_table=markdown_table(["v_n, c", *present], speed_rows["e_normal"]),
+        figure=figure,
+        e_table=markdown_table(["v_n, c", *present], speed_rows["e_first"]),
         time_table=markdown_table(["v_n, c", *present], speed_rows["contact_time"]),
         mu_table=markdown_table(["v_n, c", *present], mu_rows),
         comparison_table=markdown_table(
@@ -278,3 +285,8 @@ def body(rows: list[dict], setup: Setup, figures) -> str:
         findings=findings,
         angle_tables=[(f"{s:g}", angle_table(checks, s)) for s in speeds],
     )
+
+
+def page(rows: list[dict], setup: Setup, figures: Path) -> str:
+    """The page's body; its figure into ``figures``."""
+    return body(rows, setup, figures, FIGURE)

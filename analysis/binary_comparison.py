@@ -1,6 +1,5 @@
 """Two disks colliding beside the same disks on the wall: a binary study's
-comparison, its figures and its page section (analysis.report's
-``wall_comparison``).
+comparison, in numbers (its page section and figures: pages.binary).
 
 The binary study's seeds and angles are those of a wall study (the paper's,
 docs/results/): a seed's disk is the same in both (builder/binary.py), so
@@ -10,14 +9,11 @@ both studies together (analysis.seeds).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from .estimates import CHI2_LIMIT, lattice_constants, study_estimates
 from .fits import fit_walton, means
 from .normal_check import robustness
-from .page import pm
 from .seeds import SeedTable, seed_bootstrap, seed_tables
 
 TARGETS = ("disk", "wall")
@@ -259,146 +255,6 @@ def first_touch_incidence(rows: list[dict]) -> dict | None:
     return out
 
 
-def draw(numbers: dict, folder: Path | str, name: str) -> None:
-    """e and beta against cot gamma, two disks (filled) beside the wall study
-    ``name`` (open): binary_e_<name>.png, binary_beta_<name>.png."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    for q, label in (("e", "e"), ("beta", "beta")):
-        fig, ax = plt.subplots(figsize=(6.4, 4.6))
-        ax.set_xscale("log")
-        ax.set_xlabel("cot gamma (mean of the measured)")
-        ax.set_ylabel(label)
-        for colour, (lattice, entry) in zip(("C0", "C1", "C2", "C3"), numbers["lattices"].items()):
-            for target, face in (("disk", colour), ("wall", "none")):
-                x = np.asarray(entry[f"cot_gamma_{target}"])
-                keep = x > 0
-                ax.errorbar(
-                    x[keep],
-                    np.asarray(entry[f"{q}_{target}"])[keep],
-                    yerr=np.asarray(entry[f"{q}_{target}_error"])[keep],
-                    fmt="o" if target == "disk" else "s",
-                    color=colour,
-                    mfc=face,
-                    capsize=2,
-                    label=f"{lattice}, on {'a disk' if target == 'disk' else 'the wall'}",
-                )
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(folder / f"binary_{q}_{name}.png", dpi=110)
-        plt.close(fig)
-
-
-def with_systematic(fit: dict, theory: str, parameter: str) -> str:
-    """A measured-way parameter +- its seed error, then +- its systematic
-    error where the fit's chi2/dof is above the limit."""
-    way = fit[theory]["measured"]
-    cell = pm(way.get(parameter), way.get(f"{parameter}_sd"))
-    systematic = fit[theory].get("systematic", {}).get(parameter)
-    # a chi2 that is not finite (None in fits.json: a mean without spread) fails too
-    fails = way["chi2"] is None or way["chi2"] > CHI2_LIMIT
-    if cell != "-" and fails and systematic is not None:
-        cell += f" +- {systematic:.3f}"
-    return cell
-
-
-def fit_rows(fits: dict) -> list[str]:
-    """Walton's and the compliant fits and the model-free measures, both targets."""
-    lines = [
-        "| lattice | hits | angles | Walton mu | Walton beta0 | chi2/dof | compliant mu | "
-        "chi2/dof | e near normal | beta at cot gamma >= 4 | mu_eff on the sliding branch |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    for lattice in fits["disk"]:
-        for target in TARGETS:
-            f = fits[target][lattice]
-            walton, compliant = f["walton"]["measured"], f.get("compliant", {}).get("measured", {})
-            m = f["measures"]
-            compliant_cells = (
-                f"{with_systematic(f, 'compliant', 'mu')} | {pm(compliant['chi2'], digits=1)}"
-                if compliant
-                else "- | -"
-            )
-            lines.append(
-                f"| {lattice} | {'a disk' if target == 'disk' else 'the wall'} | {f['angles']} | "
-                f"{with_systematic(f, 'walton', 'mu')} | "
-                f"{with_systematic(f, 'walton', 'beta0')} | {pm(walton['chi2'], digits=1)} | "
-                f"{compliant_cells} | "
-                f"{pm(m['e_normal']['value'], m['e_normal']['sd'])} | "
-                f"{pm(m['beta_normal']['value'], m['beta_normal']['sd'])} | "
-                f"{pm(m['mu_eff_top']['value'], m['mu_eff_top']['sd'])} |"
-            )
-    return lines
-
-
-def aim_sentence(numbers: dict) -> str:
-    """How far the mean incidence at first touch is from the nominal angle."""
-    touch = numbers.get("first_touch")
-    if not touch:
-        return (
-            "the nominal angle set the first touch of rigid circles of radius R (tables made "
-            "before the aim by the contact)"
-        )
-    worst = max(abs(x) for entry in touch.values() for x in entry["relative"])
-    count = sum(len(entry["relative"]) for entry in touch.values())
-    return (
-        "the disk is aimed by the contact (builder/binary.py): the mean incidence at the "
-        f"first touch is within {100 * worst:.2f} % of the nominal angle at all {count} "
-        "angles"
-    )
-
-
-def section(by_wall: dict[str, dict], figure_dir: str, checks: dict | None = None) -> list[str]:
-    """The page's section: for each wall study, the comparison's tables and
-    figures; e and beta withheld where the normals' check (``checks``,
-    ``normal_checks``) finds them not robust."""
-    by_wall = {name: numbers for name, numbers in by_wall.items() if numbers}
-    if not by_wall:
-        return []
-    first = next(iter(by_wall.values()))
-    lines = [
-        "## Two disks beside the same disks on the wall",
-        "",
-        "Each seed's disk hits a second disk here and the wall in the wall studies below "
-        "(pairs of impacts of the same seed, lattice and nominal angle). e and beta of "
-        "two disks are those of the contact points' relative velocity at the line of centres "
-        "where the centres come closest (docs/model.md, 'Two disks'), and cot gamma is "
-        f"measured there too; {aim_sentence(first)}. The line of centres turns during the "
-        "contact, so the cot gamma at the apse is not the nominal one (the figures plot the "
-        "measured one; pairs are compared by nominal angle). An e or beta that the normals' "
-        "check (below, 'The normal') finds not robust is withheld, with its difference. Every "
-        "+- is the seed bootstrap's error (whole seeds of both studies resampled together); "
-        "a difference is 'same' within 2 errors, 'differs' beyond 3.",
-        "",
-        "The relative normal speed of two disks is v_n; in the centre of mass each disk "
-        "meets the contact at about v_n / 2, with a quarter of the kinetic energy per mass "
-        "that a disk brings to the wall at v_n: on the wall at v_n / 2 it brings the wall "
-        "what it brings its partner. The disks here are compared with the wall at v_n = "
-        + " and at ".join(
-            ", ".join(f"{v:g}" for v in numbers["wall_vn"]) + " c" for numbers in by_wall.values()
-        )
-        + ".",
-        "",
-        f"Total momentum and angular momentum: the largest change over a run, relative to the "
-        f"disks' own, is {first['largest_momentum_change']:.1e} and "
-        f"{first['largest_angular_change']:.1e}.",
-        "",
-    ]
-    checks = checks or {}
-    for name, numbers in by_wall.items():
-        robust = {
-            "disk": checks.get(THIS_STUDY),
-            "wall": checks.get(f"the wall, docs/{name}"),
-        }
-        lines += wall_section(name, numbers, figure_dir, robust)
-    return lines
-
-
 def robust_at(check: dict | None, lattice: str, gamma: float, quantity: str) -> bool:
     """Whether the normals' check finds this angle's mean robust (True where
     there is no check: tables from before it)."""
@@ -411,103 +267,42 @@ def robust_at(check: dict | None, lattice: str, gamma: float, quantity: str) -> 
     return True
 
 
-def wall_section(
-    name: str, numbers: dict, figure_dir: str, robust: dict | None = None
-) -> list[str]:
-    """One wall study's comparison: per lattice and angle, then the fits."""
-    robust = robust or {}
-    speeds = ", ".join(f"{v:g}" for v in numbers["wall_vn"])
-    lines = [
-        f"### On the wall at v_n = {speeds} c (`docs/{name}`)",
-        "",
-        f"{numbers['pairs']} pairs of impacts; two disks at v_n = "
-        f"{', '.join(f'{v:g}' for v in numbers['disk_vn'])} c.",
-        "",
-    ]
-    for lattice, entry in numbers["lattices"].items():
-        lines += [
-            f"#### {lattice}",
-            "",
-            "| gamma (nominal) | cot gamma, disks | e, disks | e, wall | difference | "
-            "beta, disks | beta, wall | difference | vibration: disk, 2nd disk | "
-            "vibration: disk, wall |",
-            "|---|---|---|---|---|---|---|---|---|---|",
-        ]
-        verdicts = {"e": [], "beta": []}
-        for j, gamma in enumerate(entry["gamma_deg"]):
-            kept = {
-                (q, t): robust_at(robust.get(t), lattice, gamma, q)
-                for q in ("e", "beta")
-                for t in ("disk", "wall")
-            }
-
-            def cell(key: str, j=j, kept=kept) -> str:
-                quantity, target = key.split("_")[0], key.split("_")[-1]
-                shown = (
-                    kept[(quantity, "disk")] and kept[(quantity, "wall")]
-                    if target == "difference"
-                    else kept.get((quantity, target), True)
-                )
-                return pm(entry[key][j], entry[key + "_error"][j]) if shown else "withheld"
-
-            for q in ("e", "beta"):
-                both = kept[(q, "disk")] and kept[(q, "wall")]
-                verdicts[q].append(entry[f"{q}_verdict"][j] if both else "withheld")
-            lines.append(
-                f"| {gamma:.1f} | {cell('cot_gamma_disk')} | {cell('e_disk')} | "
-                f"{cell('e_wall')} | {cell('e_difference')} ({verdicts['e'][j]}) | "
-                f"{cell('beta_disk')} | {cell('beta_wall')} | {cell('beta_difference')} "
-                f"({verdicts['beta'][j]}) | "
-                f"{entry['vibration_disk_disk'][j]:.3f}, {entry['vibration_wall_disk'][j]:.3f} | "
-                f"{entry['vibration_disk_wall'][j]:.3f}, {entry['vibration_wall_wall'][j]:.3f} |"
-            )
-        kinds = ("same", "undecided", "differs", "withheld")
-        counts = {v: verdicts["e"].count(v) for v in kinds}
-        beta_counts = {v: verdicts["beta"].count(v) for v in kinds}
-        lines += [
-            "",
-            f"e: the same at {counts['same']} angles, undecided at {counts['undecided']}, "
-            f"different at {counts['differs']}, withheld at {counts['withheld']}; beta: the same "
-            f"at {beta_counts['same']}, undecided at {beta_counts['undecided']}, different at "
-            f"{beta_counts['differs']}, withheld at {beta_counts['withheld']}.",
-            "",
-        ]
-    lines += [
-        "Walton's law and the compliant model fitted the measured way (e per angle, K from "
-        "the disks' measured inertia, each angle weighted by the standard error of its mean "
-        "beta), each target over the angles whose mean measured cot gamma lies in the range "
-        "both targets cover (`angles`), with the model-free measures beside them "
-        f"(analysis.estimates). chi2/dof above {CHI2_LIMIT:g}: the law does not describe the "
-        "data, and the parameter gets its systematic error (half its range over the eight "
-        "fitting choices) after its seed error.",
-        "",
-        *fit_rows(numbers["fits"]),
-        "",
-        *mu_difference_lines(numbers.get("mu_difference", {})),
-        f"![e, two disks and the wall at {speeds} c]({figure_dir}/binary_e_{name}.png)",
-        "",
-        f"![beta, two disks and the wall at {speeds} c]({figure_dir}/binary_beta_{name}.png)",
-        "",
-    ]
-    return lines
+VERDICTS = ("same", "undecided", "differs", "withheld")
 
 
-def mu_difference_lines(differences: dict) -> list[str]:
-    """Walton's mu of two disks less the wall's, with both errors and the verdict."""
-    lines = []
-    for lattice, d in differences.items():
-        low, high = d["cot_gamma_range"]
-        systematic = (
-            f" +- {d['systematic']:.3f} (the fitting choices: the spread of the difference "
-            "over the same choice on both)"
-            if d["fits_fail"]
-            else ""
-        )
-        lines += [
-            f"- {lattice}: Walton's mu (the measured way), two disks less the wall, over cot "
-            f"gamma {low:.3f} to {high:.3f} ({len(d['gamma_deg_disk'])} and "
-            f"{len(d['gamma_deg_wall'])} angles): {pm(d['value'], d['sd'])} (seed error, both "
-            f"studies resampled together){systematic}; {d['z']:.1f} combined errors: "
-            f"**{d['verdict']}** (the same within {SAME:g}, differs beyond {DIFFERENT:g}).",
-        ]
-    return lines + ([""] if lines else [])
+def shown(entry: dict, lattice: str, robust: dict) -> dict:
+    """Which of a lattice's comparisons the page shows: per angle, e and beta
+    of each target where the normals' check (``robust``: by target) finds
+    them robust, a difference where both are, and its verdict ("withheld"
+    where it is not shown); and how many angles have each verdict."""
+    angles = []
+    for j, gamma in enumerate(entry["gamma_deg"]):
+        kept = {
+            f"{q}_{t}": robust_at(robust.get(t), lattice, gamma, q)
+            for q in ("e", "beta")
+            for t in TARGETS
+        }
+        for q in ("e", "beta"):
+            kept[f"{q}_difference"] = kept[f"{q}_disk"] and kept[f"{q}_wall"]
+        verdicts = {
+            q: entry[f"{q}_verdict"][j] if kept[f"{q}_difference"] else "withheld"
+            for q in ("e", "beta")
+        }
+        angles.append({"kept": kept, "verdict": verdicts})
+    counts = {
+        q: {v: sum(a["verdict"][q] == v for a in angles) for v in VERDICTS} for q in ("e", "beta")
+    }
+    return {"angles": angles, "counts": counts}
+
+
+def aim(numbers: dict) -> dict | None:
+    """How far the mean incidence at the first touch is from the nominal
+    angle at worst (relative), over how many angles; None for tables made
+    before the aim by the contact."""
+    touch = numbers.get("first_touch")
+    if not touch:
+        return None
+    return {
+        "worst": max(abs(x) for entry in touch.values() for x in entry["relative"]),
+        "count": sum(len(entry["relative"]) for entry in touch.values()),
+    }

@@ -1,0 +1,76 @@
+"""The binary page's comparison of two disks with the same disks on the wall
+(analysis.binary_comparison's numbers): its section ``wall_comparison``
+and its figures. The prose: pages/templates/binary.md.j2."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from analysis import binary_comparison
+from analysis.binary_comparison import DIFFERENT, SAME, THIS_STUDY
+from analysis.estimates import CHI2_LIMIT
+
+from .render import macro
+
+
+def draw(numbers: dict, folder: Path | str, name: str) -> None:
+    """e and beta against cot gamma, two disks (filled) beside the wall study
+    ``name`` (open): binary_e_<name>.png, binary_beta_<name>.png."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    for q, label in (("e", "e"), ("beta", "beta")):
+        fig, ax = plt.subplots(figsize=(6.4, 4.6))
+        ax.set_xscale("log")
+        ax.set_xlabel("cot gamma (mean of the measured)")
+        ax.set_ylabel(label)
+        for colour, (lattice, entry) in zip(("C0", "C1", "C2", "C3"), numbers["lattices"].items()):
+            for target, face in (("disk", colour), ("wall", "none")):
+                x = np.asarray(entry[f"cot_gamma_{target}"])
+                keep = x > 0
+                ax.errorbar(
+                    x[keep],
+                    np.asarray(entry[f"{q}_{target}"])[keep],
+                    yerr=np.asarray(entry[f"{q}_{target}_error"])[keep],
+                    fmt="o" if target == "disk" else "s",
+                    color=colour,
+                    mfc=face,
+                    capsize=2,
+                    label=f"{lattice}, on {'a disk' if target == 'disk' else 'the wall'}",
+                )
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(folder / f"binary_{q}_{name}.png", dpi=110)
+        plt.close(fig)
+
+
+def section(by_wall: dict[str, dict], figure_dir: str, checks: dict | None = None) -> str:
+    """The page's section (Markdown): for each wall study, the comparison's
+    tables and figures; e and beta withheld where the normals' check
+    (``checks``, analysis.binary_comparison.normal_checks) finds them not
+    robust."""
+    by_wall = {name: numbers for name, numbers in by_wall.items() if numbers}
+    if not by_wall:
+        return ""
+    checks = checks or {}
+    shown = {
+        name: {
+            lattice: binary_comparison.shown(
+                entry,
+                lattice,
+                {"disk": checks.get(THIS_STUDY), "wall": checks.get(f"the wall, docs/{name}")},
+            )
+            for lattice, entry in numbers["lattices"].items()
+        }
+        for name, numbers in by_wall.items()
+    }
+    aim = binary_comparison.aim(next(iter(by_wall.values())))
+    return macro(
+        "binary.md.j2", "comparison", by_wall, figure_dir, shown, aim, CHI2_LIMIT, SAME, DIFFERENT
+    )
