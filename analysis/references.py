@@ -25,7 +25,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
+from .binary_comparison import verdict
+from .estimates import study_estimates
+from .failures import impact_state
+from .normal_check import robustness
 from .readings import ONE_BODY, REFERENCES, Setup
+from .seeds import seed_bootstrap, seed_tables
 
 COLUMNS = (
     "reading",
@@ -83,3 +90,165 @@ def plan(choice: dict, study):
     if choice["reference"] not in ONE_BODY:
         return study
     return replace(study, vn=study.vn / 2.0, speeds=tuple(speed / 2.0 for speed in study.speeds))
+
+
+RESAMPLES = 200
+CHI2_LIMIT = 2.0  # a fit with chi2/dof above this fails: its systematic error counts
+QUANTITIES = ("e_first", "contact_time", "mu")
+# The comparisons: (question, reference, reference)
+QUESTIONS = (
+    ("the two-body mapping", "image", "surface"),
+    ("the wall's construction", "surface", "wall"),
+    ("the partner's own disk", "pair", "image"),
+    ("the partner's compliance, its shape kept", "image", "image-held"),
+)
+VERDICTS = ("same", "undecided", "differs", "withheld")
+
+
+def finished(rows: list[dict]) -> list[dict]:
+    return [r for r in rows if not r.get("error") and r.get("e") not in (None, "")]
+
+
+def pair_speed(row: dict) -> float:
+    """The pair's relative speed a row stands beside (twice a one-body run's)."""
+    factor = 2.0 if row["reference"] in ONE_BODY else 1.0
+    return round(factor * float(row["vn"]), 9)
+
+
+def group_key(reference: str, speed: float) -> str:
+    return f"{reference}@{speed:g}"
+
+
+def grouped(rows: list[dict]) -> dict[str, list[dict]]:
+    """Rows by reference and pair speed, each marked as its own study lattice."""
+    out: dict[str, list[dict]] = {}
+    for row in rows:
+        key = group_key(row["reference"], pair_speed(row))
+        out.setdefault(key, []).append({**row, "study_lattice": key})
+    return out
+
+
+def joint_numbers(groups: dict[str, list[dict]], resamples: int) -> dict:
+    """e and the contact time at the first angle (the nearest normal
+    incidence), per group, and the differences QUESTIONS asks, with joint
+    seed errors."""
+    rows = [row for group in groups.values() for row in group]
+    tables = seed_tables(rows, ("e", "beta", "contact_time"))
+    speeds = sorted({float(k.split("@")[1]) for k in groups})
+
+    def statistic(ts) -> dict:
+        out = {}
+        for key, table in ts.items():
+            out[("e_first", key)] = float(table.mean("e")[0])
+            out[("contact_time", key)] = float(table.mean("contact_time")[0])
+        for speed in speeds:
+            for _, a, b in QUESTIONS:
+                ka, kb = group_key(a, speed), group_key(b, speed)
+                if ka in ts and kb in ts:
+                    for q in ("e_first", "contact_time"):
+                        out[(f"d_{q}", ka, kb)] = out[(q, ka)] - out[(q, kb)]
+        return out
+
+    return {"value": statistic(tables), "error": seed_bootstrap(tables, statistic, resamples)}
+
+
+def walton(group: list[dict], resamples: int) -> dict:
+    """Walton's measured-way fit of one group: mu, its seed error, chi2/dof,
+    and the systematic error of the fitting choices."""
+    fits, _ = study_estimates(group, resamples=resamples, compliant=False)
+    entry = next(iter(fits["lattices"].values()))
+    fit = entry["walton"]["measured"]
+    systematic = entry["walton"]["systematic"]["mu"]
+    failing = fit["chi2"] > CHI2_LIMIT
+    error = float(np.hypot(fit["mu_sd"], systematic)) if failing else float(fit["mu_sd"])
+    return {
+        "mu": fit["mu"],
+        "sd": fit["mu_sd"],
+        "chi2": fit["chi2"],
+        "systematic": systematic,
+        "error": error,
+        "failing": failing,
+        "mu_eff_top": entry["measures"]["mu_eff_top"],
+    }
+
+
+def first_robust(checks: dict[str, dict | None], key: str) -> tuple[bool, float]:
+    """Whether the first angle's e of a group is robust to the normal, and
+    by how much its normals differ."""
+    check = checks.get(key)
+    if not check:
+        return False, float("nan")
+    entry = next(iter(check["lattices"].values()))
+    return bool(entry["e_robust"][0]), float(entry["e_spread"][0])
+
+
+def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
+    """Every number of the references' page.
+
+    Returns
+    -------
+    dict
+        ``speeds`` (the pair's), ``present`` (references with rows, in
+        ORDER), ``angles``, ``impacts``/``failed``/``stuck``; ``value`` and
+        ``error`` (``joint_numbers``), ``fits`` (``walton``) and ``checks``
+        (the normals' check) per group; ``comparisons``: per speed and
+        question, each quantity's difference, error, verdict and whether
+        both e are robust to the normal; ``counts``: the verdicts per
+        question and quantity over the speeds.
+    """
+    done = finished(rows)
+    groups = grouped(done)
+    speeds = sorted({float(k.split("@")[1]) for k in groups})
+    joint = joint_numbers(groups, resamples)
+    value, error = joint["value"], joint["error"]
+    fits = {key: walton(group, resamples) for key, group in groups.items()}
+    checks = {key: robustness(group, resamples) for key, group in groups.items()}
+    comparisons = []
+    for s in speeds:
+        for question, a, b in QUESTIONS:
+            ka, kb = group_key(a, s), group_key(b, s)
+            if ka not in groups or kb not in groups:
+                continue
+            robust = first_robust(checks, ka)[0] and first_robust(checks, kb)[0]
+            for q in QUANTITIES:
+                if q == "mu":
+                    d = fits[ka]["mu"] - fits[kb]["mu"]
+                    err = float(np.hypot(fits[ka]["error"], fits[kb]["error"]))
+                else:
+                    d, err = value[(f"d_{q}", ka, kb)], error[(f"d_{q}", ka, kb)]
+                word = verdict(d, err)
+                if q == "e_first" and not robust:
+                    word = "withheld"
+                comparisons.append(
+                    {"speed": s, "question": question, "a": a, "b": b, "quantity": q,
+                     "difference": d, "error": err, "verdict": word}
+                )  # fmt: skip
+    counts = {
+        question: {
+            q: {
+                word: sum(
+                    c["verdict"] == word
+                    for c in comparisons
+                    if c["question"] == question and c["quantity"] == q
+                )
+                for word in VERDICTS
+            }
+            for q in QUANTITIES
+        }
+        for question, _, _ in QUESTIONS
+    }
+    states = [impact_state(r["error"]) for r in rows if r.get("error")]
+    return {
+        "speeds": speeds,
+        "present": [r for r in ORDER if any(group_key(r, s) in groups for s in speeds)],
+        "angles": sorted({float(r["gamma_deg"]) for r in done}),
+        "impacts": len(rows),
+        "failed": states.count("failed"),
+        "stuck": states.count("stuck"),
+        "value": value,
+        "error": error,
+        "fits": fits,
+        "checks": checks,
+        "comparisons": comparisons,
+        "counts": counts,
+    }

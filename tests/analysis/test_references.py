@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from analysis import references
-from pages.references import group_key, grouped, joint_numbers, pair_speed
+from analysis.references import group_key, grouped, joint_numbers, pair_speed
 from runner.study import Study
 
 
