@@ -51,7 +51,7 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
             spec.wall_points,
             spec.wall_width,
             spec.wall_height,
-            spec.roughness,
+            spec.roughness if spec.wall_roughness is None else spec.wall_roughness,
             spec.wall_fixed,
             spec.roughness_direction,
             spec.roughness_length,

@@ -196,6 +196,8 @@ SCENE_OPTIONS = (
            kind=float | str),
     Option("wall_fixed", "sides", "which wall points are held fixed", words=WALL_FIXED_CHOICES,
            applies="wall", made_by="always"),
+    Option("wall_roughness", None, "std of the wall's surface roughness (default: the disk's, "
+           "--roughness)", ROUGHNESS, applies="wall", made_by="changed", kind=float | None),
     *(Option(name, default, meaning, words=MODEL_READINGS[name], made_by="always",
              before=MODEL_READINGS[name][0])
       for name, default, meaning in MODEL_OPTIONS),
