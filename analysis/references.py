@@ -80,7 +80,7 @@ def label(choice: dict) -> str:
 
 
 def row_fields(choice: dict, setup: Setup) -> dict:
-    """Each row's reference and the pair's relative speed it stands beside."""
+    """Each row's reference (``pair_speed`` derives the pair's speed from it)."""
     return {"reference": choice["reference"]}
 
 
