@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from builder.aim import AIM_TOLERANCE_DEG
+
 from .estimates import CHI2_LIMIT, lattice_constants, study_estimates
 from .fits import fit_walton, means
 from .normal_check import robustness
@@ -214,12 +216,6 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
         out[f"largest_{key}_change"] = max(float(r[column]) for r in disk_rows)
     out["first_touch"] = first_touch_incidence(disk_rows)
     return out
-
-
-# The aim's own tolerance is 5e-11 rad and placing the disk on the binary
-# grid moves the incidence by at most 1e-5 degrees; an aimed incidence
-# further from the nominal one than this is the nearest line past a jump.
-AIM_TOLERANCE_DEG = 1e-3
 
 
 def first_touch_incidence(rows: list[dict]) -> dict | None:

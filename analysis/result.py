@@ -202,6 +202,7 @@ def binary_result(scene: dict, run: dict, series, energies) -> dict:
     result.update(binary_normals(series, masses, spec["radius"], aim.get("first_touch_time")))
     result["aim_offset"] = aim.get("offset")
     result["aim_incidence_deg"] = aim.get("first_touch_incidence_deg")
+    result["aim_turn_deg"] = aim.get("turn_deg")
     result.update(momentum_change(series, masses, spec["radius"]))
     result.update(binary_energy_split(series, energies, masses))
     result["vibration_wall"] = result["vibration_target"]

@@ -82,10 +82,11 @@ BINARY_COLUMNS = (
     "cot_gamma_impulse",
     "normal_angle_deg_impulse",
     "impulse_tilt_deg",
-    # the aim by the contact (builder/binary.py): the line's offset and the
-    # first touch's incidence the rings give
+    # the aim by the contact (builder/binary.py): the line's offset, the
+    # first touch's incidence the rings give, and the pair's turn (degrees)
     "aim_offset",
     "aim_incidence_deg",
+    "aim_turn_deg",
 )
 # A held second disk (partner image-held): the rows say so (analysis.estimates.two_body_k).
 HELD_COLUMNS = (*BINARY_COLUMNS, "target_held")

@@ -98,6 +98,13 @@ def incidence(
     return float(np.arctan2(centre @ across, -(centre @ direction)))
 
 
+# An aimed incidence within this of the nominal one is a line that first
+# touches there (the aim's own tolerance is 5e-11 rad, and placing the disk
+# on the binary grid moves it by at most 1e-5 degrees); one further away is
+# the nearest line past a jump of the incidence onto another asperity.
+AIM_TOLERANCE_DEG = 1e-3
+
+
 def aim(
     ring_a: np.ndarray,
     ring_b: np.ndarray,
@@ -105,12 +112,22 @@ def aim(
     gamma: float,
     reach: float,
     radius: float,
-) -> float:
+) -> tuple[float, float]:
     """The offset of the line of motion from the target's centre that makes
     the first touch (at ``reach``) happen at the incidence ``gamma`` (radians):
-    the root of ``incidence`` - gamma, which rises with the offset."""
+    the root of ``incidence`` - gamma, which rises with the offset.
+
+    Returns
+    -------
+    tuple of float
+        The offset, and the incidence there minus ``gamma`` (radians): within
+        ``AIM_TOLERANCE_DEG`` where a line first touches at ``gamma``. Where
+        none does (another asperity takes over first, and the incidence jumps
+        across ``gamma`` or to a miss, pi / 2), the line just beside the jump
+        whose incidence is nearer ``gamma``, among those on which the rings meet.
+    """
     if gamma == 0.0:
-        return 0.0
+        return 0.0, 0.0
 
     def miss(offset: float) -> float:
         return incidence(ring_a, ring_b, direction, offset, reach, radius) - gamma
@@ -122,14 +139,62 @@ def aim(
     if not miss(low) < 0.0 < miss(high):
         low, high = -3.0 * radius, 3.0 * radius
     root = float(brentq(miss, low, high, xtol=tolerance))
-    # Where another asperity takes over first, the incidence jumps across
-    # gamma (or to a miss, pi / 2): of the lines just either side of the jump,
-    # the one whose incidence is nearer gamma, among those on which the rings meet.
-    sides = [root + k * tolerance for k in (-4.0, 4.0)]
-    meeting = [b for b in sides if abs(miss(b) + gamma) < np.pi / 2 - 1e-12]
+    sides = [(b, miss(b)) for b in (root - 4.0 * tolerance, root + 4.0 * tolerance)]
+    meeting = [(b, m) for b, m in sides if abs(m + gamma) < np.pi / 2 - 1e-12]
     if not meeting:
         raise RuntimeError("the aim found no line on which the disks meet")
-    return min(meeting, key=lambda b: abs(miss(b)))
+    return min(meeting, key=lambda side: abs(side[1]))
+
+
+def hits(miss: float) -> bool:
+    """Whether an aim's miss (radians) is a line that first touches at the
+    nominal incidence, not the nearest line past a jump."""
+    return abs(np.degrees(miss)) <= AIM_TOLERANCE_DEG
+
+
+def turned(direction: np.ndarray, angle: float) -> np.ndarray:
+    """``direction`` turned counter-clockwise by ``angle`` (radians)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([c * direction[0] - s * direction[1], s * direction[0] + c * direction[1]])
+
+
+# How many turns of the pair either way the aim tries (``aim_turned``).
+MAX_TURNS = 8
+
+
+def aim_turned(
+    ring_a: np.ndarray,
+    ring_b: np.ndarray,
+    direction: np.ndarray,
+    gamma: float,
+    reach: float,
+    radius: float,
+    step: float,
+) -> tuple[np.ndarray, float, float, float]:
+    """The aim (``aim``) of a pair that may be turned: along ``direction`` if
+    a line there first touches at ``gamma``; else along ``direction`` turned
+    by step, -step, 2 step, ... (radians, up to MAX_TURNS steps either way),
+    the first that has one. Turning the direction of approach with both
+    bodies fixed is turning both bodies the other way under a fixed
+    approach: the same sample met at another point of its surface. Where no
+    turn has such a line, the turn whose nearest line misses least.
+
+    Returns
+    -------
+    tuple
+        The direction of approach (unit vector), the offset, the miss
+        (radians, as ``aim``'s) and the turn (radians, counter-clockwise).
+    """
+    best = None
+    for k in range(2 * MAX_TURNS + 1):
+        turn = (k + 1) // 2 * step * (1 if k % 2 else -1)  # 0, step, -step, 2 step, ...
+        along = turned(direction, turn) if turn else direction
+        offset, miss = aim(ring_a, ring_b, along, gamma, reach, radius)
+        if best is None or abs(miss) < abs(best[2]):
+            best = (along, offset, miss, turn)
+        if hits(miss):
+            break
+    return best
 
 
 def stand_off(v0: float, a: float, reduced_mass: float, speed: float, cutoff: float) -> float:

@@ -15,8 +15,10 @@ rigidly (the contact's energy is below a millionth of that until 0.05 R
 before the stand-off, a R being 300), so the first contact follows from their rings
 alone (``builder.aim.first_contact``: each point's ray against the other ring's segments
 widened by the reach). Rigid circles of radius R would need the offset
-2 R sin gamma; the rough rings and the stand-off need a larger one. The
-total momentum is zero.
+2 R sin gamma; the rough rings and the stand-off need a larger one. Where
+no line first touches at gamma (the incidence jumps past it onto another
+asperity), the pair is turned, a quarter of the disk's surface spacing at a
+time, until one does (``builder.aim.aim_turned``). The total momentum is zero.
 
 Atom order and types: the target's surface ring first (tags 1..n, counter-
 clockwise: pair_style polyline/exp's ring), then its interior (types 3 and 4,
@@ -33,7 +35,7 @@ import numpy as np
 from ground.errors import InputError
 
 from . import bodies
-from .aim import aim, first_contact, place_projectile, stand_off
+from .aim import aim_turned, first_contact, hits, place_projectile, stand_off, turned
 from .bodies import SURFACE, Body
 from .materials import spring_constant
 from .placement import on_grid, placement_quantum, renumbered
@@ -175,8 +177,8 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
             f"sound speed is {speed:.3f} c"
         )
     gamma = np.radians(spec.gamma_deg)
-    relative = np.array([speed * np.tan(gamma), -speed])
-    direction = relative / np.linalg.norm(relative)
+    # the relative velocity before the aim's turn (below)
+    unturned = np.array([speed * np.tan(gamma), -speed])
     mass_a, mass_b = len(disk.points), len(target.points)
     # a held target neither recoils nor gives: the disk brings all the relative velocity
     held = spec.partner in ("image-held", "surface")
@@ -190,7 +192,20 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     )
     # the aim's scale: R, or for the surface's 20 R ring the mean of both radii
     scale = 0.5 * (1.0 + SURFACE_RADIUS) * R if spec.partner == "surface" else R
-    offset = aim(ring_a, ring_b, direction, gamma, reach, scale)
+    # Where no line of these rough rings first touches at gamma (the
+    # incidence jumps past it onto another asperity), the pair is turned by
+    # a quarter of the disk's surface spacing at a time: the same disks met
+    # at other points of their surfaces, until a line does.
+    direction, offset, miss, turn = aim_turned(
+        ring_a,
+        ring_b,
+        unturned / np.linalg.norm(unturned),
+        gamma,
+        reach,
+        scale,
+        0.25 * disk.spacing,
+    )
+    relative = turned(unturned, turn) if turn else unturned
     centre = on_grid(
         place_projectile(ring_a, ring_b, direction, offset, scale, cutoff * (1 + spec.start_gap)),
         quantum,
@@ -202,6 +217,10 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     aimed = {
         "reach": reach,
         "offset": offset,
+        # the pair's turn (degrees, counter-clockwise), and whether a line
+        # first touches at gamma (else the nearest line past a jump)
+        "turn_deg": float(np.degrees(turn)) + 0.0,
+        "hit": bool(hits(miss)),
         "rigid_offset": 2.0 * scale * float(np.sin(gamma)),
         # R/c from the start: the run's time of the first contact
         "first_touch_time": float(travel / np.linalg.norm(relative)),
@@ -258,6 +277,8 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
         rings=((1, n_ring_b), (n_target + 1, n_target + n_ring_a)),
     )
     scene.info["aim"] = aimed
+    # the nominal incidence, whatever the aim's turn
+    scene.info["cot_gamma"] = float(-unturned[1] / unturned[0]) if unturned[0] > 0 else None
     return scene
 
 
@@ -337,5 +358,4 @@ def binary_info(
         "initial_velocity": scene.velocities[in_disk][0].tolist(),
         "target_initial_velocity": scene.velocities[~in_disk][0].tolist(),
         "initial_relative_velocity": relative.tolist(),
-        "cot_gamma": float(abs(relative[1]) / relative[0]) if relative[0] > 0 else None,
     }

@@ -51,17 +51,24 @@ def test_the_scene_is_at_rest_in_the_centre_of_mass_and_its_rings_run_counter_cl
 
 
 @pytest.mark.parametrize(
-    "lattice, gamma, vn", [("random", 45.0, 0.1), ("triangular", 80.5, 0.1), ("random", 76.0, 0.01)]
+    "lattice, gamma, vn, seed",
+    [
+        ("random", 45.0, 0.1, 5),
+        ("triangular", 80.5, 0.1, 5),
+        ("random", 76.0, 0.01, 5),
+        # no line of the unturned pair first touches at 86 degrees: turned
+        ("random", 86.0, 0.01, 10),
+    ],
 )
-def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn):
+def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn, seed):
     """The disk starts the cutoff and the start gap from the target, and on
     its line of motion the rings first come within the contact's stand-off
     (checked here with the distance to the polylines, not the builder's rays)
     where the line of centres makes the nominal angle with the relative
     velocity; rigid circles of radius R would have been aimed short of it."""
-    from builder.aim import first_contact, gap_between
+    from builder.aim import AIM_TOLERANCE_DEG, first_contact, gap_between
 
-    spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": gamma, "vn": vn, "seed": 5})
+    spec = SceneSpec(**{**BINARY, "lattice": lattice, "gamma_deg": gamma, "vn": vn, "seed": seed})
     scene = build_scene(spec)
     ring_b, ring_a = rings(scene)
     cutoff, aimed = scene.info["contact"]["cutoff"], scene.info["aim"]
@@ -82,9 +89,40 @@ def test_the_disk_is_aimed_by_the_contact(lattice, gamma, vn):
     assert min(gap_between(own + scene.disk_centre + s * u, ring_b) for s in path) > aimed["reach"]
     across = np.array([-u[1], u[0]])
     measured = np.degrees(np.arctan2(touch @ across, -(touch @ u)))
-    assert measured == pytest.approx(gamma, rel=0.01)
+    assert aimed["hit"] and abs(measured - gamma) <= AIM_TOLERANCE_DEG
     assert measured == pytest.approx(aimed["first_touch_incidence_deg"], abs=1e-9)
     assert aimed["offset"] > aimed["rigid_offset"]
+
+
+def test_where_no_line_first_touches_at_gamma_the_pair_is_turned():
+    """Seed 10's rings have no line that first touches at 86 degrees (the
+    incidence jumps past it); the aim turns the approach by whole quarters of
+    the disk's surface spacing, and keeps the normal speed and the nominal
+    incidence (an unturned pair keeps its data file to the bit:
+    tests/builder/test_builder.py's pinned scenes)."""
+    from builder.aim import aim, hits
+
+    spec = SceneSpec(**{**BINARY, "gamma_deg": 86.0, "vn": 0.01, "seed": 10})
+    scene = build_scene(spec)
+    aimed = scene.info["aim"]
+    ring_b, ring_a = rings(scene)
+    own = ring_a - scene.disk_centre
+    gamma = np.radians(86.0)
+    unturned = np.array([np.sin(gamma), -np.cos(gamma)])
+    _, miss = aim(own, ring_b, unturned, gamma, aimed["reach"], spec.radius)
+    assert not hits(miss)  # the jump the turn avoids
+    step = 0.25 * scene.info["disk_spacing"] / spec.radius
+    turns = np.radians(aimed["turn_deg"]) / step
+    assert turns != 0 and turns == pytest.approx(round(turns), abs=1e-9)
+    relative = np.array(scene.info["initial_relative_velocity"])
+    turn = np.radians(aimed["turn_deg"])
+    assert np.arctan2(relative[1], relative[0]) == pytest.approx(gamma - np.pi / 2 + turn)
+    # the normal speed of the same disks at 45 degrees, where they meet unturned
+    at_45 = build_scene(dataclasses.replace(spec, gamma_deg=45.0))
+    assert at_45.info["aim"]["turn_deg"] == 0.0 and at_45.info["aim"]["hit"]
+    speed = np.linalg.norm(at_45.info["initial_relative_velocity"]) * np.cos(np.radians(45.0))
+    assert np.linalg.norm(relative) * np.cos(gamma) == pytest.approx(speed, rel=1e-12)
+    assert scene.info["cot_gamma"] == pytest.approx(1 / np.tan(gamma), rel=1e-12)
 
 
 def test_the_disk_is_the_wall_scenes_and_the_second_disk_another():
