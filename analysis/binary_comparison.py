@@ -228,17 +228,22 @@ def first_touch_incidence(rows: list[dict]) -> dict | None:
     for lattice in sorted({r["study_lattice"] for r in rows}):
         by_angle: dict[float, list[float]] = {}
         missed: dict[float, int] = {}
+        turns: dict[float, int] = {}
         for r in rows:
             if r["study_lattice"] == lattice:
                 gamma = float(r["gamma_deg"])
                 angle = np.degrees(np.arctan2(1.0, float(r["cot_gamma_first_touch"])))
                 by_angle.setdefault(gamma, []).append(float(angle))
-                # no line of these rough rings first touches at gamma: the
-                # incidence jumps past it onto another asperity, and the aim
-                # (builder.binary.aim) took the nearest line
+                # no line of these rough rings, turned or not, first touches
+                # at gamma: the incidence jumps past it onto another asperity,
+                # and the aim (builder.aim.aim_turned) took the nearest line
                 aimed = r.get("aim_incidence_deg")
                 jumped = aimed not in (None, "") and abs(float(aimed) - gamma) > AIM_TOLERANCE_DEG
                 missed[gamma] = missed.get(gamma, 0) + int(jumped)
+                # where none did unturned, the pair was turned until one did
+                turn = r.get("aim_turn_deg")
+                turned = turn not in (None, "") and float(turn) != 0.0
+                turns[gamma] = turns.get(gamma, 0) + int(turned)
         gammas = sorted(by_angle)
         mean = [float(np.mean(by_angle[g])) for g in gammas]
         out[lattice] = {
@@ -246,6 +251,7 @@ def first_touch_incidence(rows: list[dict]) -> dict | None:
             "incidence_deg": mean,
             "relative": [m / g - 1.0 for m, g in zip(mean, gammas)],
             "no_line": [missed[g] for g in gammas],
+            "turned": [turns[g] for g in gammas],
             "impacts": [len(by_angle[g]) for g in gammas],
         }
     return out

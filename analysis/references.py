@@ -27,7 +27,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .binary_comparison import verdict
+from .binary_comparison import first_touch_incidence, verdict
 from .estimates import study_estimates
 from .failures import impact_state
 from .normal_check import robustness
@@ -67,6 +67,8 @@ COLUMNS = (
     "beta_impulse",
     "cot_gamma_impulse",
     "impulse_tilt_deg",
+    "aim_incidence_deg",
+    "aim_turn_deg",
     "steps",
     "dt",
     "error",
@@ -239,6 +241,7 @@ def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
     }
     states = [impact_state(r["error"]) for r in rows if r.get("error")]
     return {
+        "aim": aim_numbers(groups),
         "speeds": speeds,
         "present": [r for r in ORDER if any(group_key(r, s) in groups for s in speeds)],
         "angles": sorted({float(r["gamma_deg"]) for r in done}),
@@ -251,4 +254,23 @@ def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
         "checks": checks,
         "comparisons": comparisons,
         "counts": counts,
+    }
+
+
+def aim_numbers(groups: dict[str, list[dict]]) -> dict | None:
+    """How the aim by the contact hit, over the groups of two disks (the wall
+    is placed, not aimed): the largest relative departure of a group's mean
+    incidence at the first contact from the nominal angle, over how many
+    means, and the impacts turned or past a jump (``first_touch_incidence``);
+    None for rows made before the aim recorded its turn."""
+    aimed = [r for key, group in groups.items() if not key.startswith("wall@") for r in group]
+    if not aimed or any(r.get("aim_turn_deg") in (None, "") for r in aimed):
+        return None
+    touch = first_touch_incidence(aimed) or {}
+    return {
+        "worst": max(abs(x) for t in touch.values() for x in t["relative"]),
+        "means": sum(len(t["relative"]) for t in touch.values()),
+        "impacts": sum(sum(t["impacts"]) for t in touch.values()),
+        "turned": sum(sum(t["turned"]) for t in touch.values()),
+        "no_line": sum(sum(t["no_line"]) for t in touch.values()),
     }

@@ -113,6 +113,7 @@ def findings_section(fits: dict, study: dict) -> list[str]:
             "worst": worst,
             "angles": sum(len(t["gamma_deg"]) for t in touch.values()),
             "no_line": sum(sum(t.get("no_line", ())) for t in touch.values()),
+            "turned": sum(sum(t.get("turned", ())) for t in touch.values()),
             "impacts": sum(sum(t.get("impacts", ())) for t in touch.values()),
             "within_one_percent": sum(
                 abs(x) <= 0.01 for t in touch.values() for x in t["relative"]

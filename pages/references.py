@@ -144,6 +144,7 @@ def body(rows: list[dict], setup: Setup, figures: Path, figure: str) -> str:
         impacts=n["impacts"],
         failed=n["failed"],
         stuck=n["stuck"],
+        aim=n["aim"],
         resamples=RESAMPLES,
         chi2_limit=CHI2_LIMIT,
         references=present,
