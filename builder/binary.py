@@ -4,8 +4,8 @@ The second disk (the target) sits at the origin; the disk (the projectile)
 comes from above. The relative velocity of the centres, v_A - v_B, is
 (v_n tan gamma, -v_n), and the disk is aimed by the contact, not by rigid
 circles: its line of motion is offset from the target's centre so that, at
-the first contact, the line of centres makes the angle gamma with the
-relative velocity. The first contact is where a surface point of either
+the first contact, the line of the centres of mass makes the angle gamma
+with the relative velocity. The first contact is where a surface point of either
 disk first comes within the contact's stand-off of the other's surface: the
 distance l* at which one point's contact energy V0 exp(-a l*) equals the
 approach's normal kinetic energy (1/2) mu v_n^2 (mu the reduced mass), the
@@ -196,23 +196,25 @@ def build_binary_scene(spec: SceneSpec) -> Scene:
     # incidence jumps past it onto another asperity), the pair is turned by
     # a quarter of the disk's surface spacing at a time: the same disks met
     # at other points of their surfaces, until a line does.
+    # The line of centres is that of the centres of mass (as the analysis
+    # measures it), not of the bodies' frames: a random disk's centre of mass
+    # is up to 0.02 R from its frame's origin, which turns the line by up to
+    # 0.6 degrees. So the aim sees each ring about its centre of mass.
+    com_a, com_b = disk_points.mean(axis=0), target_points.mean(axis=0)
+    about_a, about_b = ring_a - com_a, ring_b - com_b
+    step = 0.25 * disk.spacing
     direction, offset, miss, turn = aim_turned(
-        ring_a,
-        ring_b,
-        unturned / np.linalg.norm(unturned),
-        gamma,
-        reach,
-        scale,
-        0.25 * disk.spacing,
+        about_a, about_b, unturned / np.linalg.norm(unturned), gamma, reach, scale, step
     )
     relative = turned(unturned, turn) if turn else unturned
-    centre = on_grid(
-        place_projectile(ring_a, ring_b, direction, offset, scale, cutoff * (1 + spec.start_gap)),
-        quantum,
-    )
-    # the first contact the run will see, from where the disk is put
+    gap = cutoff * (1 + spec.start_gap)
+    placed = place_projectile(about_a, about_b, direction, offset, scale, gap)
+    # the disk's frame goes where its centre of mass is placed less that centre
+    centre = on_grid(placed + com_b - com_a, quantum)
+    # the first contact the run will see, from where the disk is put, and the
+    # line of the centres of mass then
     travel = first_contact(ring_a, ring_b, centre, direction, reach)
-    touch = centre + travel * direction
+    touch = centre + travel * direction + com_a - com_b
     across = np.array([-direction[1], direction[0]])
     aimed = {
         "reach": reach,
