@@ -28,8 +28,9 @@ from dataclasses import replace
 import numpy as np
 
 from .binary_comparison import first_touch_incidence, verdict
-from .estimates import study_estimates
+from .estimates import fit, lattice_constants, study_estimates, way
 from .failures import impact_state
+from .fits import means
 from .normal_check import robustness
 from .readings import ONE_BODY, REFERENCES, Setup
 from .seeds import seed_bootstrap, seed_tables
@@ -132,22 +133,28 @@ def grouped(rows: list[dict]) -> dict[str, list[dict]]:
 
 def joint_numbers(groups: dict[str, list[dict]], resamples: int) -> dict:
     """e and the contact time at the first angle (the nearest normal
-    incidence), per group, and the differences QUESTIONS asks, with joint
-    seed errors."""
+    incidence) and Walton's mu (the measured-way fit, as ``walton``'s), per
+    group, and the differences QUESTIONS asks, with joint seed errors: a
+    difference's error keeps the correlation of the two groups' seeds."""
     rows = [row for group in groups.values() for row in group]
-    tables = seed_tables(rows, ("e", "beta", "contact_time"))
+    tables = seed_tables(rows, ("cot_gamma", "e", "beta", "contact_time"))
     speeds = sorted({float(k.split("@")[1]) for k in groups})
+    fitted = {}
+    for key in tables:
+        nu, _, K = lattice_constants(rows, key)
+        fitted[key] = way("walton", "measured", K, nu)
 
     def statistic(ts) -> dict:
         out = {}
         for key, table in ts.items():
             out[("e_first", key)] = float(table.mean("e")[0])
             out[("contact_time", key)] = float(table.mean("contact_time")[0])
+            out[("mu", key)] = float(fit("walton", means(table), fitted[key])[0])
         for speed in speeds:
             for _, a, b in QUESTIONS:
                 ka, kb = group_key(a, speed), group_key(b, speed)
                 if ka in ts and kb in ts:
-                    for q in ("e_first", "contact_time"):
+                    for q in QUANTITIES:
                         out[(f"d_{q}", ka, kb)] = out[(q, ka)] - out[(q, kb)]
         return out
 
@@ -213,11 +220,10 @@ def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
                 continue
             robust = first_robust(checks, ka)[0] and first_robust(checks, kb)[0]
             for q in QUANTITIES:
-                if q == "mu":
-                    d = fits[ka]["mu"] - fits[kb]["mu"]
-                    err = float(np.hypot(fits[ka]["error"], fits[kb]["error"]))
-                else:
-                    d, err = value[(f"d_{q}", ka, kb)], error[(f"d_{q}", ka, kb)]
+                d, err = value[(f"d_{q}", ka, kb)], error[(f"d_{q}", ka, kb)]
+                if q == "mu":  # the joint seed error, and a failing fit's systematic one
+                    failing = [fits[k]["systematic"] for k in (ka, kb) if fits[k]["failing"]]
+                    err = float(np.sqrt(err**2 + sum(x**2 for x in failing)))
                 word = verdict(d, err)
                 if q == "e_first" and not robust:
                     word = "withheld"

@@ -20,6 +20,18 @@ def test_the_one_body_references_run_at_half_the_pairs_speed(reference):
     assert pair_speed({"reference": reference, "vn": planned.speeds[1]}) == pytest.approx(0.2)
 
 
+def bodies(reference: str) -> dict:
+    """The columns Walton's K is computed from (analysis.estimates.lattice_constants)."""
+    two = {"target": "disk", "n_disk_points": 800, "n_target_points": 800}
+    return {
+        **({"target": "wall"} if reference == "wall" else two),
+        "target_held": reference in ("image-held", "surface"),
+        "nu": 0.3,
+        "disk_inertia_ratio": 0.5,
+        "target_inertia_ratio": 0.5,
+    }
+
+
 def synthetic(reference: str, shift: float, seeds: int = 6) -> list[dict]:
     rng = np.random.default_rng(3)
     rows = []
@@ -37,6 +49,8 @@ def synthetic(reference: str, shift: float, seeds: int = 6) -> list[dict]:
                     "e": 0.9 + disk + shift,
                     "beta": -0.5 + disk,
                     "contact_time": 8.0 + 10 * disk + 10 * shift,
+                    "cot_gamma": 1.0 / np.tan(np.radians(gamma)),
+                    **bodies(reference),
                 }
             )
     return rows
@@ -53,3 +67,45 @@ def test_differences_resample_whole_seeds_of_both_references_together():
     assert value[("d_contact_time", a, b)] == pytest.approx(0.2)
     assert error[("d_e_first", a, b)] < 1e-12
     assert error[("e_first", a)] > 1e-3  # each alone scatters with its disks
+
+
+def walton_rows(reference: str, shift: float, seeds: int = 8) -> list[dict]:
+    """Rows whose beta follows Walton's law with each seed's own mu (its
+    disk's, shared by every reference) plus a reference's shift."""
+    from analysis.theory import walton_beta
+
+    rng = np.random.default_rng(5)
+    rows = []
+    for seed in range(1, seeds + 1):
+        mu = 0.15 + rng.normal(0.0, 0.03) + shift
+        for gamma in (5.7106, 20.0, 40.0, 55.0, 65.0, 75.0, 80.0):
+            psi = 1.0 / np.tan(np.radians(gamma))
+            beta = float(walton_beta(np.array([psi]), 0.9, mu, 0.5, 3.0)[0])
+            rows.append(
+                {
+                    "reference": reference,
+                    "study_lattice": "random",
+                    "lattice": "random",
+                    "seed": seed,
+                    "gamma_deg": gamma,
+                    "vn": 0.05 if reference in references.ONE_BODY else 0.1,
+                    "cot_gamma": psi,
+                    "e": 0.9,
+                    "beta": beta + rng.normal(0.0, 0.002),
+                    "contact_time": 8.0,
+                    **bodies(reference),
+                }
+            )
+    return rows
+
+
+def test_a_mu_difference_keeps_the_correlation_of_shared_seeds():
+    """Two references whose seeds' mu move together: the joint bootstrap's
+    error of the difference is far below the two errors in quadrature,
+    which a sum of independent errors would give."""
+    rows = walton_rows("surface", 0.03) + walton_rows("wall", 0.0)
+    numbers = joint_numbers(grouped(rows), resamples=100)
+    a, b = group_key("surface", 0.1), group_key("wall", 0.1)
+    value, error = numbers["value"], numbers["error"]
+    assert value[("d_mu", a, b)] == pytest.approx(0.03, abs=0.01)
+    assert error[("d_mu", a, b)] < 0.3 * np.hypot(error[("mu", a)], error[("mu", b)])
