@@ -220,8 +220,9 @@ def comparison(rows: list[dict], wall_rows: list[dict], resamples: int = 200) ->
 
 def first_touch_incidence(rows: list[dict]) -> dict | None:
     """Per lattice and nominal angle, the mean incidence at the first touch
-    (degrees, from each impact's cot gamma there) and its relative
-    departure from the nominal angle: how well the aim by the contact hit."""
+    (degrees, from each impact's cot gamma there, which the analysis reads
+    from the rows), its relative departure from the nominal angle and the
+    largest departure of one impact: how well the aim by the contact hit."""
     if not all(r.get("cot_gamma_first_touch") not in (None, "") for r in rows):
         return None  # tables from before the normals
     out = {}
@@ -253,6 +254,8 @@ def first_touch_incidence(rows: list[dict]) -> dict | None:
             "no_line": [missed[g] for g in gammas],
             "turned": [turns[g] for g in gammas],
             "impacts": [len(by_angle[g]) for g in gammas],
+            # an impact's own departure (degrees) at worst: the rows' reading
+            "largest_deg": [float(np.max(np.abs(np.subtract(by_angle[g], g)))) for g in gammas],
         }
     return out
 

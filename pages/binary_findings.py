@@ -114,6 +114,9 @@ def findings_section(fits: dict, study: dict) -> list[str]:
             "angles": sum(len(t["gamma_deg"]) for t in touch.values()),
             "no_line": sum(sum(t.get("no_line", ())) for t in touch.values()),
             "turned": sum(sum(t.get("turned", ())) for t in touch.values()),
+            "largest_deg": max(
+                (x for t in touch.values() for x in t.get("largest_deg", ())), default=None
+            ),
             "impacts": sum(sum(t.get("impacts", ())) for t in touch.values()),
             "within_one_percent": sum(
                 abs(x) <= 0.01 for t in touch.values() for x in t["relative"]
