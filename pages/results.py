@@ -84,6 +84,8 @@ def results_page(
         tables=tables,
         preset=preset,
         made_by=made_by(study, preset),
+        # the steps dt auto took (the rows' own)
+        steps_used=sorted({float(r["dt"]) for r in rows if r.get("dt") not in (None, "")}),
         body=body,
         figures=figure_dir,
     )
