@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
+from scipy.stats import norm
 
 from .binary_comparison import first_touch_incidence, verdict
 from .estimates import fit, lattice_constants, study_estimates, way
@@ -248,6 +249,7 @@ def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
     states = [impact_state(r["error"]) for r in rows if r.get("error")]
     return {
         "aim": aim_numbers(groups),
+        "largest": {q: largest_difference(comparisons, q) for q in QUANTITIES},
         "speeds": speeds,
         "present": [r for r in ORDER if any(group_key(r, s) in groups for s in speeds)],
         "angles": sorted({float(r["gamma_deg"]) for r in done}),
@@ -279,4 +281,33 @@ def aim_numbers(groups: dict[str, list[dict]]) -> dict | None:
         "impacts": sum(sum(t["impacts"]) for t in touch.values()),
         "turned": sum(sum(t["turned"]) for t in touch.values()),
         "no_line": sum(sum(t["no_line"]) for t in touch.values()),
+    }
+
+
+def largest_difference(comparisons: list[dict], quantity: str) -> dict | None:
+    """The largest of one quantity's differences in errors, judged as the
+    largest of all its comparisons (the look-elsewhere effect): its two-sided
+    normal p, and the chance that the largest of n reaches it with no
+    difference anywhere, 1 - (1 - p)^n (Sidak's; for comparisons that
+    correlate, as these share seeds and references, it overstates that
+    chance, so it errs towards 'by chance'). None without a comparison."""
+    judged = [
+        c
+        for c in comparisons
+        if c["quantity"] == quantity and c["verdict"] != "withheld" and c["error"] > 0
+    ]
+    if not judged:
+        return None
+    top = max(judged, key=lambda c: abs(c["difference"]) / c["error"])
+    z = abs(top["difference"]) / top["error"]
+    p_global = float(-np.expm1(len(judged) * np.log1p(-2.0 * norm.sf(z))))
+    return {
+        "z": float(z),
+        "count": len(judged),
+        "p_global": p_global,
+        "z_global": float(norm.isf(p_global / 2.0)),
+        "speed": top["speed"],
+        "question": top["question"],
+        "a": top["a"],
+        "b": top["b"],
     }

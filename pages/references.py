@@ -162,6 +162,7 @@ def body(rows: list[dict], setup: Setup, figures: Path, figure: str) -> str:
         questions=QUESTIONS,
         quantities=[(q, NAMES[q]) for q in QUANTITIES],
         counts=n["counts"],
+        largest=n["largest"],
         angle_tables=[(f"{s:g}", angle_table(checks, s)) for s in speeds],
     )
 

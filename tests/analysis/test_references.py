@@ -109,3 +109,24 @@ def test_a_mu_difference_keeps_the_correlation_of_shared_seeds():
     value, error = numbers["value"], numbers["error"]
     assert value[("d_mu", a, b)] == pytest.approx(0.03, abs=0.01)
     assert error[("d_mu", a, b)] < 0.3 * np.hypot(error[("mu", a)], error[("mu", b)])
+
+
+def test_the_largest_difference_counts_the_look_elsewhere_effect():
+    """The largest of n independent normal differences reaches z with the
+    chance 1 - (1 - p)^n: checked against draws of n normal variates; a
+    withheld comparison is not among the n."""
+    from analysis.references import largest_difference
+
+    def comparison(difference, verdict="same"):
+        return {"quantity": "mu", "difference": difference, "error": 0.01, "verdict": verdict,
+                "speed": 0.1, "question": "q", "a": "image", "b": "surface"}  # fmt: skip
+
+    comparisons = [comparison(0.01 * z) for z in (0.3, -1.2, 2.5, 0.8)]
+    comparisons += [comparison(0.05, "withheld"), {**comparison(0.02), "quantity": "e_first"}]
+    top = largest_difference(comparisons, "mu")
+    assert top["count"] == 4 and top["z"] == pytest.approx(2.5)
+    draws = np.random.default_rng(1).standard_normal((200_000, 4))
+    chance = np.mean(np.abs(draws).max(axis=1) >= 2.5)
+    assert top["p_global"] == pytest.approx(chance, abs=0.002)
+    assert top["z_global"] < top["z"]
+    assert largest_difference(comparisons[4:5], "mu") is None
