@@ -204,7 +204,9 @@ def numbers(rows: list[dict], resamples: int = RESAMPLES) -> dict:
         (the normals' check) per group; ``comparisons``: per speed and
         question, each quantity's difference, error, verdict and whether
         both e are robust to the normal; ``counts``: the verdicts per
-        question and quantity over the speeds.
+        question and quantity over the speeds; ``largest``: per quantity,
+        its largest difference with the look-elsewhere effect
+        (``largest_difference``); ``aim``: how the aim hit (``aim_numbers``).
     """
     done = finished(rows)
     groups = grouped(done)

@@ -20,15 +20,24 @@ def test_the_one_body_references_run_at_half_the_pairs_speed(reference):
     assert pair_speed({"reference": reference, "vn": planned.speeds[1]}) == pytest.approx(0.2)
 
 
-def bodies(reference: str) -> dict:
-    """The columns Walton's K is computed from (analysis.estimates.lattice_constants)."""
+def impact(reference: str, seed: int, gamma: float, **measured) -> dict:
+    """One impact's row: its reference, seed and angle, the columns Walton's
+    K is computed from (analysis.estimates.lattice_constants), and ``measured``."""
     two = {"target": "disk", "n_disk_points": 800, "n_target_points": 800}
     return {
+        "reference": reference,
+        "study_lattice": "random",
+        "lattice": "random",
+        "seed": seed,
+        "gamma_deg": gamma,
+        "vn": 0.05 if reference in references.ONE_BODY else 0.1,
+        "cot_gamma": 1.0 / np.tan(np.radians(gamma)),
         **({"target": "wall"} if reference == "wall" else two),
         "target_held": reference in ("image-held", "surface"),
         "nu": 0.3,
         "disk_inertia_ratio": 0.5,
         "target_inertia_ratio": 0.5,
+        **measured,
     }
 
 
@@ -39,20 +48,9 @@ def synthetic(reference: str, shift: float, seeds: int = 6) -> list[dict]:
         disk = rng.normal(0.0, 0.05)  # the seed's own disk, shared by every reference
         for gamma in (5.7106, 30.0, 70.0):
             rows.append(
-                {
-                    "reference": reference,
-                    "study_lattice": "random",
-                    "lattice": "random",
-                    "seed": seed,
-                    "gamma_deg": gamma,
-                    "vn": 0.05 if reference in references.ONE_BODY else 0.1,
-                    "e": 0.9 + disk + shift,
-                    "beta": -0.5 + disk,
-                    "contact_time": 8.0 + 10 * disk + 10 * shift,
-                    "cot_gamma": 1.0 / np.tan(np.radians(gamma)),
-                    **bodies(reference),
-                }
-            )
+                impact(reference, seed, gamma, e=0.9 + disk + shift, beta=-0.5 + disk,
+                       contact_time=8.0 + 10 * disk + 10 * shift)
+            )  # fmt: skip
     return rows
 
 
@@ -82,20 +80,9 @@ def walton_rows(reference: str, shift: float, seeds: int = 8) -> list[dict]:
             psi = 1.0 / np.tan(np.radians(gamma))
             beta = float(walton_beta(np.array([psi]), 0.9, mu, 0.5, 3.0)[0])
             rows.append(
-                {
-                    "reference": reference,
-                    "study_lattice": "random",
-                    "lattice": "random",
-                    "seed": seed,
-                    "gamma_deg": gamma,
-                    "vn": 0.05 if reference in references.ONE_BODY else 0.1,
-                    "cot_gamma": psi,
-                    "e": 0.9,
-                    "beta": beta + rng.normal(0.0, 0.002),
-                    "contact_time": 8.0,
-                    **bodies(reference),
-                }
-            )
+                impact(reference, seed, gamma, e=0.9, contact_time=8.0,
+                       beta=beta + rng.normal(0.0, 0.002))
+            )  # fmt: skip
     return rows
 
 
