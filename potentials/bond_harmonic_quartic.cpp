@@ -71,7 +71,7 @@ constexpr int MAX_STIFFNESS = 65536;
 BondHarmonicQuartic::BondHarmonicQuartic(LAMMPS *lmp) :
     Bond(lmp), r0(nullptr), ka(nullptr), kb(nullptr), param(nullptr), packed(nullptr),
     packed_class(nullptr), npacked(0), maxpacked(0), packed_ncalls(-1), packed_source(nullptr),
-    type_class(nullptr), stiffness(nullptr), nstiffness(0), use_packed(0)
+    type_class(nullptr), stiffness(nullptr), nstiffness(0), want_packed(1), use_packed(0)
 {
   writedata = 1;
 #ifdef BOND_HARMONIC_QUARTIC_BORN_MATRIX
@@ -301,6 +301,21 @@ void BondHarmonicQuartic::allocate()
 }
 
 /* ----------------------------------------------------------------------
+   bond_style harmonic/quartic [packed yes|no]: no reads the bond list and
+   each type's coefficients at every step (the benchmarks' "before")
+------------------------------------------------------------------------- */
+
+void BondHarmonicQuartic::settings(int narg, char **arg)
+{
+  if (narg == 0) return;
+  if (narg != 2 || strcmp(arg[0], "packed") != 0)
+    error->all(FLERR, "Illegal bond_style harmonic/quartic command: expects [packed yes|no]");
+  if (strcmp(arg[1], "yes") == 0) want_packed = 1;
+  else if (strcmp(arg[1], "no") == 0) want_packed = 0;
+  else error->all(FLERR, "Illegal bond_style harmonic/quartic command: packed must be yes or no");
+}
+
+/* ----------------------------------------------------------------------
    one bond_coeff line: N r0 ka kb (from the input or a data file)
 ------------------------------------------------------------------------- */
 
@@ -362,7 +377,7 @@ void BondHarmonicQuartic::init_style()
     type_class[i] = found.first->second;
   }
   nstiffness = (int) rows.size();
-  use_packed = (nstiffness <= MAX_STIFFNESS);
+  use_packed = want_packed && (nstiffness <= MAX_STIFFNESS);
   for (int i = 0; i < modify->nfix; i++)
     if (strncmp(modify->fix[i]->style, "bond/", 5) == 0) use_packed = 0;
   memory->sfree(stiffness);

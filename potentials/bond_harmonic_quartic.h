@@ -34,6 +34,7 @@ class BondHarmonicQuartic : public Bond {
   BondHarmonicQuartic(class LAMMPS *);
   ~BondHarmonicQuartic() override;
   void compute(int, int) override;
+  void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
   double equilibrium_distance(int) override;
@@ -80,6 +81,7 @@ class BondHarmonicQuartic : public Bond {
   int *type_class;           // per type: its row of stiffness; -1: not packable
   Stiffness *stiffness;      // the distinct (ka, kb) of the types
   int nstiffness;
+  int want_packed;           // bond_style harmonic/quartic packed no: never pack
   int use_packed;            // 0: the types' own path (too many distinct pairs,
                              // or a fix that changes bonds in a run)
 
