@@ -79,7 +79,9 @@ def run_once(folder: Path, dt: float, ranks: int, setting: str) -> dict | None:
         return None
     log = folder / "log.lammps"
     text = log.read_text()
-    runs = re.findall(r"Loop time of ([\d.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text)
+    runs = re.findall(
+        r"Loop time of ([\d.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text
+    )
     seconds, steps, atoms = max((float(s), int(n), int(a)) for s, n, a in runs)
     timers = timer_seconds(log)  # summed over the deck's runs; the run 0s add nothing
     ghosts = re.findall(r"^Nghost:\s+([\d.eE+-]+) ave", text, re.M)
@@ -151,7 +153,8 @@ def main(argv: list[str] | None = None) -> int:
             rows.append([
                 f"{n:,}", str(r), setting, f"{runs[0]['atoms']:,}", f"{runs[0]['steps']:,}",
                 f"{rate / 1e6:.1f}", f"{median(x['bond'] for x in runs):.0%}",
-                f"{median(x['modify'] for x in runs):.0%}", f"{median(x['comm'] for x in runs):.0%}",
+                f"{median(x['modify'] for x in runs):.0%}",
+                f"{median(x['comm'] for x in runs):.0%}",
                 f"{median(x['ghosts'] for x in runs):,.0f}" if r > 1 else "-",
                 f"{runs[0]['e']:.6f}", loads,
             ])  # fmt: skip
@@ -170,21 +173,36 @@ def main(argv: list[str] | None = None) -> int:
         "(average over ranks); ghosts: per rank at the end. load: the 1-minute load "
         f"average before and after the size ({os.cpu_count()} cores).\n\n"
         + markdown_table(
-            ["disk points N", "ranks", "setting", "atoms", "steps", "M atom-steps/s", "Bond",
-             "Modify", "Comm", "ghosts per rank", "e", "load"],
+            [
+                "disk points N",
+                "ranks",
+                "setting",
+                "atoms",
+                "steps",
+                "M atom-steps/s",
+                "Bond",
+                "Modify",
+                "Comm",
+                "ghosts per rank",
+                "e",
+                "load",
+            ],
             rows,
         )  # fmt: skip
     )
     ratios = []
     largest = sizes[-1]
     for setting in SETTINGS:
-        if (largest, 1, setting) in summary and (12800, 1, setting) in summary:
-            ratios.append([f"rate at {largest:,} / rate at 12,800, one rank", setting,
-                           f"{summary[largest, 1, setting] / summary[12800, 1, setting]:.2f}"])  # fmt: skip
+        rate = {(n, r): v for (n, r, s), v in summary.items() if s == setting}
+        if (largest, 1) in rate and (12800, 1) in rate:
+            value = rate[largest, 1] / rate[12800, 1]
+            ratios.append(
+                [f"rate at {largest:,} / rate at 12,800, one rank", setting, f"{value:.2f}"]
+            )
         for n in sizes:
-            if (n, 2, setting) in summary and (n, 1, setting) in summary:
-                ratios.append([f"two ranks / one rank at {n:,}", setting,
-                               f"{summary[n, 2, setting] / summary[n, 1, setting]:.2f}"])  # fmt: skip
+            if (n, 2) in rate and (n, 1) in rate:
+                value = rate[n, 2] / rate[n, 1]
+                ratios.append([f"two ranks / one rank at {n:,}", setting, f"{value:.2f}"])
     if ratios:
         body += "\n\nRatios of the median rates:\n\n" + markdown_table(
             ["ratio", "setting", "value"], ratios
