@@ -1,9 +1,12 @@
 """LAMMPS's loop against the arithmetic floor: the same springs in a plain C loop.
 
-    python bench/loop_floor.py [--gamma 30] [--seed 1] [--steps 5000] [--repeats 5] [--docs]
+    python bench/loop_floor.py [--gamma 30] [--seed 1] [--steps 5000] [--repeats 5]
+                               [--n-disk 800 ...] [--docs]
 
 On one scene of the default reading (random disk), in one run, interleaved
-and repeated:
+and repeated; with --n-disk, at each number of disk points (above 800 the
+resolution study's reading, correlation length 0.048 R, dt auto: as
+bench/loop_rate.py):
 
   floor    bench/loop_floor.c, compiled here with gcc -O3: the scene's springs
            (per-spring r0, ka, kb) and velocity Verlet over the atoms that
@@ -41,11 +44,13 @@ from bench.common import (
     median,
     write_report,
 )
+from bench.resolution_cost import SIZE, spec_at
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
 from ground.checks import Range
 from ground.launch import command_line, run_python
+from runner.options import RunOptions
 from runner.studies import load_study
 
 SOURCE = ROOT / "bench" / "loop_floor.c"
@@ -99,10 +104,9 @@ def run_springs(folder: Path, dt: float, steps: int) -> tuple[float, np.ndarray]
     return loop_seconds(log)[0], positions
 
 
-def run_impact_loop(folder: Path) -> tuple[float, int]:
+def run_impact_loop(folder: Path, options: RunOptions) -> tuple[float, int]:
     """The impact deck's main run as the study runs it: loop seconds, steps."""
-    variables = {"scene": str(folder), "out": str(folder),
-                 **load_study("paper").options.deck_variables()}  # fmt: skip
+    variables = {"scene": str(folder), "out": str(folder), **options.deck_variables()}
     log = folder / "log.lammps"
     run_python(variables, log)
     text = log.read_text()
@@ -119,58 +123,85 @@ def parser():
         help=f"steps of the floor's and the springs-only loops, {STEPS.describe()} (default: 5000)",
     )  # fmt: skip
     add_repeats(parser, 5, "interleaved runs of each loop")
+    parser.add_argument(
+        "--n-disk", type=SIZE, nargs="+", default=[800],
+        help=f"disk points, each {SIZE.describe()}; one table row set per number (default: 800)",
+    )  # fmt: skip
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
-    folder = RUNS / "loop_floor"
-    spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
+def measure(n_disk: int, args) -> tuple[dict[str, list[float]], dict[str, list[float]], float]:
+    """Rates of the three loops at n_disk points, their ratios to the floor,
+    and the largest difference of the floor's positions from LAMMPS's."""
+    folder = RUNS / "loop_floor" / f"n{n_disk}"
+    if n_disk == 800:  # the paper's default reading, as before
+        spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
+        options = load_study("paper").options
+    else:
+        spec = spec_at(n_disk, args.gamma, args.seed)
+        options = RunOptions().for_scene(spec)
     write_scene(build_scene(spec), folder)
-    dt = load_study("paper").options.dt
-    compile_floor()
+    dt = options.dt
     rates: dict[str, list[float]] = {"floor": [], "springs": [], "impact": []}
     ratios: dict[str, list[float]] = {"springs": [], "impact": []}
     worst = 0.0
     for _ in range(args.repeats):
         floor_s, floor_x = run_floor(folder, dt, args.steps)
         springs_s, springs_x = run_springs(folder, dt, args.steps)
-        impact_s, impact_steps = run_impact_loop(folder)
+        impact_s, impact_steps = run_impact_loop(folder, options)
         worst = max(worst, float(np.abs(floor_x - springs_x).max()))
         rates["floor"].append(args.steps / floor_s)
         rates["springs"].append(args.steps / springs_s)
         rates["impact"].append(impact_steps / impact_s)
         for way in ratios:
             ratios[way].append(rates[way][-1] / rates["floor"][-1])
-        print(", ".join(f"{way} {r[-1]:,.0f}" for way, r in rates.items()) + " steps/s", flush=True)
-    if worst > SAME_POSITIONS:
-        print(f"the floor's positions differ from LAMMPS's by {worst:.1e} R: it does not "
-              "compute the same springs", file=sys.stderr)  # fmt: skip
-        return 1
+        print(f"{n_disk} points: " + ", ".join(f"{way} {r[-1]:,.0f}" for way, r in rates.items())
+              + f" steps/s, load {os.getloadavg()[0]:.1f}", flush=True)  # fmt: skip
+    return rates, ratios, worst
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    compile_floor()
     names = {
         "floor": "floor: plain C loop, springs and velocity Verlet (gcc -O3)",
         "springs": "LAMMPS, the springs only (contact none)",
         "impact": "LAMMPS, decks/impact.lmp as the study runs it",
     }
-    rows = [
-        [names[way], f"{median(r):,.0f}",
-         "1" if way == "floor" else f"{median(ratios[way]):.2f}"]
-        for way, r in rates.items()
-    ]  # fmt: skip
+    rows, worst_all = [], 0.0
+    for n_disk in args.n_disk:
+        load = os.getloadavg()[0]
+        rates, ratios, worst = measure(n_disk, args)
+        worst_all = max(worst_all, worst)
+        rows += [
+            [f"{n_disk:,}", names[way], f"{median(r):,.0f}",
+             "1" if way == "floor" else f"{median(ratios[way]):.2f}", f"{load:.1f}"]
+            for way, r in rates.items()
+        ]  # fmt: skip
+    if worst_all > SAME_POSITIONS:
+        print(f"the floor's positions differ from LAMMPS's by {worst_all:.1e} R: it does not "
+              "compute the same springs", file=sys.stderr)  # fmt: skip
+        return 1
     body = (
-        f"The default scene (random disk, seed {args.seed}, gamma {args.gamma:g} degrees, "
-        f"{spec.n_disk} disk points), dt = {dt:g}; the floor and the springs-only run "
+        f"Random disk, seed {args.seed}, gamma {args.gamma:g} degrees: at 800 disk points "
+        "the paper's default scene and step (dt = 0.008), above it the resolution study's "
+        "reading (correlation length 0.048 R, dt auto); the floor and the springs-only run "
         f"{args.steps:,} steps, the impact deck its impact's steps; medians of "
         f"{args.repeats} interleaved repetitions, ratios to the floor of the same "
-        f"repetition.\n\n"
-        + markdown_table(["loop", "steps per second", "ratio to the floor"], rows)
+        "repetition. load: the 1-minute load average when the size started "
+        f"({os.cpu_count()} cores).\n\n"
+        + markdown_table(
+            ["disk points", "loop", "steps per second", "ratio to the floor", "load"], rows
+        )
         + f"\n\nThe floor and LAMMPS's springs-only run end at the same positions to "
-        f"{worst:.1e} R (the order in which the forces are summed differs).\n"
+        f"{worst_all:.1e} R (the order in which the forces are summed differs).\n"
     )
     print(body)
     command = (
         f"python bench/loop_floor.py --gamma {args.gamma:g} --seed {args.seed} "
-        f"--steps {args.steps} --repeats {args.repeats}" + (" --docs" if args.docs else "")
+        f"--steps {args.steps} --repeats {args.repeats}"
+        + ("" if args.n_disk == [800] else " --n-disk " + " ".join(map(str, args.n_disk)))
+        + (" --docs" if args.docs else "")
     )
     print(
         f"wrote {write_report('loop_floor', 'LAMMPS against the floor', command, body, args.docs)}"

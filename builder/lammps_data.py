@@ -155,6 +155,7 @@ def settings_text(
     # two disks' rings, to the vertices RING_CHORD away along the other ring
     # (the pair style's outward direction: potentials/pair_polyline_exp.cpp).
     segments = RING_CHORD if info.get("target") == "disk" else 2.0
+    bonds = float(info["max_natural_length"] * 1.5 + skin)
     comm = float(max(info["max_natural_length"] * 1.5, cutoff + segments * reach) + skin)
     return (
         "# Scene settings written by the builder; -var on the command line overrides them.\n"
@@ -164,6 +165,8 @@ def settings_text(
         f"variable contact_V0  index {info['contact']['V0']!r}\n"
         f"variable skin        index {skin!r}\n"
         f"variable comm_cutoff index {comm!r}\n"
+        # the ghosts of the bodies' interiors, which only springs reach (decks/setup.lmp)
+        f"variable bond_cutoff index {bonds!r}\n"
         f"variable wall_first  index {info['wall_row_tags'][0]}\n"
         f"variable wall_last   index {info['wall_row_tags'][1]}\n"
         f"variable table       index {table}\n"

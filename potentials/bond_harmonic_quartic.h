@@ -34,6 +34,7 @@ class BondHarmonicQuartic : public Bond {
   BondHarmonicQuartic(class LAMMPS *);
   ~BondHarmonicQuartic() override;
   void compute(int, int) override;
+  void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
   double equilibrium_distance(int) override;
@@ -52,6 +53,17 @@ class BondHarmonicQuartic : public Bond {
   struct Param {
     double r0, ka, kb;
   };
+  // one entry of the bond list with its natural length, and the index of
+  // its (ka, kb) in a table of the distinct pairs: the workflow's one type
+  // per bond has a few distinct stiffnesses, so the loop reads 18 bytes
+  // per bond instead of the list's 12 and a type's 24
+  struct Packed {
+    int i1, i2;
+    double r0;
+  };
+  struct Stiffness {
+    double ka, kb;
+  };
 
  protected:
   double *r0;       // natural length
@@ -59,8 +71,24 @@ class BondHarmonicQuartic : public Bond {
   double *kb;       // quartic stiffness
   Param *param;     // copy of r0, ka, kb per type, filled by init_style()
 
+  // the bond list in packed form (pack()), remade whenever the neighbour
+  // lists are (Neighbor::ncalls) or the list changes address or length
+  Packed *packed;
+  unsigned short *packed_class;    // per bond: its row of stiffness
+  int npacked, maxpacked;
+  bigint packed_ncalls;
+  int **packed_source;
+  int *type_class;           // per type: its row of stiffness; -1: not packable
+  Stiffness *stiffness;      // the distinct (ka, kb) of the types
+  int nstiffness;
+  int want_packed;           // bond_style harmonic/quartic packed no: never pack
+  int use_packed;            // 0: the types' own path (too many distinct pairs,
+                             // or a fix that changes bonds in a run)
+
   void allocate();
+  void pack();
   template <int EVFLAG, int NEWTON_BOND, int THREE_D> void eval(int, int);
+  template <int EVFLAG, int NEWTON_BOND, int THREE_D> void eval_packed(int, int);
 };
 
 }    // namespace LAMMPS_NS

@@ -15,7 +15,10 @@
    once per atom type instead of once per atom (the same quotient), and no
    z. Everything else (init, the time step, rRESPA) is fix nve's own. On
    the impact deck's scene fix nve was a quarter of the loop
-   (docs/benchmarks/loop_floor.md).
+   (docs/benchmarks/loop_floor.md). The arrays are read as rows of three
+   doubles that do not overlap (as the bond style reads them), without a
+   row pointer per atom: the same updates in the same order, in fewer
+   instructions (docs/benchmarks/resolution_cost.md).
 ------------------------------------------------------------------------- */
 
 #include "fix_nve_2d.h"
@@ -26,6 +29,18 @@
 #include "memory.h"
 
 using namespace LAMMPS_NS;
+
+namespace {
+
+// LAMMPS keeps x, v and f as contiguous rows of three doubles (memory->grow
+// of a 2-d array): read them as such, with no row pointer per atom, and tell
+// the compiler that they do not overlap
+struct Vec3 {
+  double x, y, z;
+};
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
+
+}    // namespace
 
 /* ---------------------------------------------------------------------- */
 
@@ -60,33 +75,38 @@ void FixNVE2d::set_dtfm()
 
 void FixNVE2d::initial_integrate(int /*vflag*/)
 {
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  const double *rmass = atom->rmass;
-  const int *type = atom->type;
-  const int *mask = atom->mask;
+  Vec3 *const __restrict x = reinterpret_cast<Vec3 *>(atom->x[0]);
+  Vec3 *const __restrict v = reinterpret_cast<Vec3 *>(atom->v[0]);
+  const Vec3 *const __restrict f = reinterpret_cast<const Vec3 *>(atom->f[0]);
+  const double *const __restrict rmass = atom->rmass;
+  const int *const __restrict type = atom->type;
+  const int *const __restrict mask = atom->mask;
+  const int bit = groupbit;
+  const double dt_v = dtv;
   int nlocal = atom->nlocal;
   if (igroup == atom->firstgroup) nlocal = atom->nfirst;
+  if (nlocal == 0) return;
 
   if (rmass) {
+    const double dt_f = dtf;
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        const double dtfm = dtf / rmass[i];
-        v[i][0] += dtfm * f[i][0];
-        v[i][1] += dtfm * f[i][1];
-        x[i][0] += dtv * v[i][0];
-        x[i][1] += dtv * v[i][1];
+      if (mask[i] & bit) {
+        const double dtfm = dt_f / rmass[i];
+        v[i].x += dtfm * f[i].x;
+        v[i].y += dtfm * f[i].y;
+        x[i].x += dt_v * v[i].x;
+        x[i].y += dt_v * v[i].y;
       }
   } else {
     set_dtfm();
+    const double *const __restrict dtfm_t = dtfm_type;
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        const double dtfm = dtfm_type[type[i]];
-        v[i][0] += dtfm * f[i][0];
-        v[i][1] += dtfm * f[i][1];
-        x[i][0] += dtv * v[i][0];
-        x[i][1] += dtv * v[i][1];
+      if (mask[i] & bit) {
+        const double dtfm = dtfm_t[type[i]];
+        v[i].x += dtfm * f[i].x;
+        v[i].y += dtfm * f[i].y;
+        x[i].x += dt_v * v[i].x;
+        x[i].y += dt_v * v[i].y;
       }
   }
 }
@@ -95,28 +115,32 @@ void FixNVE2d::initial_integrate(int /*vflag*/)
 
 void FixNVE2d::final_integrate()
 {
-  double **v = atom->v;
-  double **f = atom->f;
-  const double *rmass = atom->rmass;
-  const int *type = atom->type;
-  const int *mask = atom->mask;
+  Vec3 *const __restrict v = reinterpret_cast<Vec3 *>(atom->v[0]);
+  const Vec3 *const __restrict f = reinterpret_cast<const Vec3 *>(atom->f[0]);
+  const double *const __restrict rmass = atom->rmass;
+  const int *const __restrict type = atom->type;
+  const int *const __restrict mask = atom->mask;
+  const int bit = groupbit;
   int nlocal = atom->nlocal;
   if (igroup == atom->firstgroup) nlocal = atom->nfirst;
+  if (nlocal == 0) return;
 
   if (rmass) {
+    const double dt_f = dtf;
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        const double dtfm = dtf / rmass[i];
-        v[i][0] += dtfm * f[i][0];
-        v[i][1] += dtfm * f[i][1];
+      if (mask[i] & bit) {
+        const double dtfm = dt_f / rmass[i];
+        v[i].x += dtfm * f[i].x;
+        v[i].y += dtfm * f[i].y;
       }
   } else {
     set_dtfm();
+    const double *const __restrict dtfm_t = dtfm_type;
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        const double dtfm = dtfm_type[type[i]];
-        v[i][0] += dtfm * f[i][0];
-        v[i][1] += dtfm * f[i][1];
+      if (mask[i] & bit) {
+        const double dtfm = dtfm_t[type[i]];
+        v[i].x += dtfm * f[i].x;
+        v[i].y += dtfm * f[i].y;
       }
   }
 }
