@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 from scipy.spatial import Delaunay
+from scipy.stats import spearmanr
 
 from builder.scene import SceneSpec
 from runner.impact import run_impact
@@ -257,13 +258,40 @@ def summarise(table: Path, out: Path) -> None:
             values = np.array([float(r[name] or "nan") for r in group])
             row[name] = f"{values.mean():.4g}"
             row[f"{name}_se"] = f"{values.std(ddof=1) / np.sqrt(len(values)):.2g}"
-        turned = np.array([float(r["inverted_max"] or 0) > 0 for r in group])
-        row["inverted_share"] = f"{turned.mean():.3g}"
+        count = np.array([float(r["inverted_max"] or 0) for r in group])
+        row["inverted_share"] = f"{(count > 0).mean():.3g}"
+        # the turned-over triangles' area, R^2: count times a triangle's, sqrt(3) h^2 / 4
+        area = count * np.sqrt(3.0) / 4.0 * float(group[0]["h"]) ** 2
+        row["turned_area"] = f"{area.mean():.3g}"
+        row["turned_area_se"] = f"{area.std(ddof=1) / np.sqrt(len(area)):.2g}"
+        vib = np.array([float(r["vibration_disk"]) for r in group])
+        row["vibration_disk_unturned"] = (
+            f"{vib[count == 0].mean():.3g}" if (count == 0).any() else ""
+        )
         rows.append(row)
     with out.open("w", newline="") as handle:
         writer = csv.DictWriter(handle, list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
+    links = []
+    for label in dict.fromkeys(r["label"] for r in runs):
+        group = [r for r in runs if r["label"] == label]
+        area = [float(r["inverted_max"] or 0) * float(r["h"]) ** 2 for r in group]
+        vib = [float(r["vibration_disk"]) for r in group]
+        rho, p = spearmanr(vib, area) if len(set(area)) > 1 else (np.nan, np.nan)
+        links.append(
+            {
+                "label": label,
+                "impacts": len(group),
+                "spearman_vibration_turned_area": f"{rho:.3g}",
+                "p": f"{p:.2g}",
+            }
+        )
+    with out.with_name(out.stem + "_link.csv").open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, list(links[0]))
+        writer.writeheader()
+        writer.writerows(links)
+    print(links)
     shown = (
         "label",
         "n_disk",
