@@ -264,6 +264,9 @@ def summarise(table: Path, out: Path) -> None:
         area = count * np.sqrt(3.0) / 4.0 * float(group[0]["h"]) ** 2
         row["turned_area"] = f"{area.mean():.3g}"
         row["turned_area_se"] = f"{area.std(ddof=1) / np.sqrt(len(area)):.2g}"
+        lost = np.array([float(r["vibration_disk"]) + float(r["vibration_wall"]) for r in group])
+        row["vibration_both"] = f"{lost.mean():.4g}"
+        row["vibration_both_se"] = f"{lost.std(ddof=1) / np.sqrt(len(lost)):.2g}"
         vib = np.array([float(r["vibration_disk"]) for r in group])
         row["vibration_disk_unturned"] = (
             f"{vib[count == 0].mean():.3g}" if (count == 0).any() else ""
