@@ -12,15 +12,26 @@ measures from each run's dump what the result.json does not hold:
   the kinetic energy left in the cell means is what a lattice of spacing
   about s could hold, the rest lives at shorter wavelengths.
 
-One row per impact goes to ``--table`` (resumable: rows already there are
-skipped); the dumps are deleted after their analysis.
+- the triangles of the disk's spring network that turn over (signed area
+  of opposite sign to the start's), the most at one frame, and the largest
+  compression of a disk spring before any turned.
 
-    nice -n 10 .venv/bin/python -m bench.rough_contact --label L0.2 \
-        --n-disk 800 1600 3200 6400 --seeds 1-8 --roughness-length 0.2 \
-        --table docs/rough_contact/runs.csv --out /tmp/rough_contact
+One row per impact goes to runs.csv in runs/bench/rough_contact/ (with
+--docs in docs/rough_contact/; resumable: rows already there are skipped);
+each impact's folder and dump are removed after its analysis. --summary
+writes summary.csv (means and t-based errors per reading and N) and
+summary_link.csv (Spearman of the disk's vibration against the turned area).
+The committed tables (docs/rough_contact.md):
 
-Any other scene field goes through ``--set name=value`` (``--set vn=0.2``,
-``--set n_wall=1600 --set wall_roughness=0``).
+    B="nice -n 10 .venv/bin/python -m bench.rough_contact --docs"
+    $B --reading L0.2 --n-disk 800 1600 3200 6400 --seeds 8
+    $B --reading smooth --n-disk 800 3200 --seeds 4
+    $B --reading smooth --n-disk 6400 --seeds 2
+    $B --reading L0.2_vn0.05 --n-disk 800 --seeds 8
+    $B --reading L0.2_vn0.05 --n-disk 6400 --seeds 3
+    $B --reading smooth_vn0.25 --n-disk 800 --seeds 4
+    $B --reading smooth_vn0.25 --n-disk 6400 --seeds 2
+    $B --summary
 """
 
 from __future__ import annotations
@@ -29,14 +40,19 @@ import argparse
 import csv
 import json
 import shutil
-from dataclasses import fields, replace
+import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial import Delaunay
 from scipy.stats import spearmanr
 
-from builder.scene import SceneSpec
+from bench.common import RUNS, bench_parser, refuse
+from builder.scene import N_DISK, SceneSpec
+from ground.checks import OutFolder, Range
+from ground.errors import InputError
+from ground.paths import ROOT
 from runner.impact import run_impact
 from runner.options import RunOptions
 
@@ -313,106 +329,107 @@ def summarise(table: Path, out: Path) -> None:
         print("  ".join(str(row[k]) for k in shown))
 
 
-def seeds(text: str) -> list[int]:
-    low, _, high = text.partition("-")
-    return list(range(int(low), int(high or low) + 1))
+# The readings measured (docs/rough_contact.md): scene fields besides n_disk and seed.
+READINGS = {
+    "L0.2": {"roughness_length": 0.2},
+    "smooth": {"roughness": 0.0},
+    "L0.2_vn0.05": {"roughness_length": 0.2, "vn": 0.05},
+    "smooth_vn0.25": {"roughness": 0.0, "vn": 0.25},
+}
+GAMMA_DEG = 45.0
+SEEDS = Range(1, 64, integer=True)  # seeds 1 to this
+TABLES = ROOT / "docs" / "rough_contact"
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--label")
-    parser.add_argument("--summary", type=Path, help="only summarise --table into this CSV")
-    parser.add_argument("--n-disk", type=int, nargs="+", default=[800, 1600, 3200, 6400])
-    parser.add_argument("--seeds", type=seeds, default=seeds("1-8"))
-    parser.add_argument("--gamma", type=float, default=45.0)
-    parser.add_argument("--roughness", type=float, default=0.03)
-    parser.add_argument("--roughness-length", type=float, default=0.2)
-    parser.add_argument("--set", action="append", default=[], help="scene field=value")
-    parser.add_argument("--no-dump", action="store_true", help="e and shares only")
-    parser.add_argument("--table", type=Path, required=True)
-    parser.add_argument("--out", type=Path, default=Path("/tmp/rough_contact"))
-    args = parser.parse_args(argv)
-    if args.summary:
-        summarise(args.table, args.summary)
-        return
-    if not args.label:
-        parser.error("--label is required to run impacts")
-    types = {f.name: f.type for f in fields(SceneSpec)}
-    extra = {}
-    for item in args.set:
-        name, value = item.split("=", 1)
-        if name not in types:
-            parser.error(f"--set: no scene field {name}")
-        extra[name] = (
-            value
-            if not value.replace(".", "").replace("-", "").isdigit()
-            else (float(value) if "." in value else int(value))
-        )
-    done = set()
-    if args.table.exists():
-        with args.table.open() as handle:
-            done = {(r["label"], int(r["n_disk"]), int(r["seed"])) for r in csv.DictReader(handle)}
-    args.table.parent.mkdir(parents=True, exist_ok=True)
-    for n in args.n_disk:
-        for seed in args.seeds:
-            if (args.label, n, seed) in done:
-                continue
-            spec = SceneSpec(
-                n_disk=n,
-                seed=seed,
-                gamma_deg=args.gamma,
-                roughness=args.roughness,
-                roughness_length=args.roughness_length,
-                **extra,
+def parser() -> argparse.ArgumentParser:
+    parser = bench_parser(__file__, __doc__)
+    for action in parser._actions:
+        if action.dest == "docs":
+            action.help = (
+                "write the tables into docs/rough_contact/; default: runs/bench/rough_contact/"
             )
+    parser.add_argument(
+        "--reading", choices=sorted(READINGS), help="the scene to run (required to run impacts)"
+    )
+    parser.add_argument(
+        "--n-disk",
+        type=N_DISK,
+        nargs="+",
+        default=[800, 1600, 3200, 6400],
+        help=f"disk resolutions, each {N_DISK.describe()} (default: 800 1600 3200 6400)",
+    )
+    parser.add_argument(
+        "--seeds", type=SEEDS, default=8, help=f"seeds 1 to this, {SEEDS.describe()} (default: 8)"
+    )
+    parser.add_argument(
+        "--scratch",
+        type=OutFolder(),
+        default=None,
+        help="where the impacts run, each folder removed after its analysis "
+        "(default: runs/bench/rough_contact_scratch)",
+    )
+    parser.add_argument(
+        "--summary", action="store_true", help="only summarise runs.csv into summary.csv"
+    )
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    tables = TABLES if args.docs else RUNS / "rough_contact"
+    table = tables / "runs.csv"
+    try:
+        if args.summary and args.reading:
+            raise InputError("--reading runs impacts; --summary only summarises the table")
+        if not args.summary and not args.reading:
+            raise InputError("--reading is required to run impacts (or give --summary)")
+        if args.summary and not table.is_file():
+            raise InputError(f"--summary: no {table} to summarise")
+    except InputError as error:
+        return refuse(__file__, error)
+    if args.summary:
+        summarise(table, tables / "summary.csv")
+        return 0
+    scratch = args.scratch or RUNS / "rough_contact_scratch"
+    done = set()
+    if table.exists():
+        with table.open() as handle:
+            done = {(r["label"], int(r["n_disk"]), int(r["seed"])) for r in csv.DictReader(handle)}
+    tables.mkdir(parents=True, exist_ok=True)
+    fields = {"roughness": 0.03, "gamma_deg": GAMMA_DEG, **READINGS[args.reading]}
+    for n in args.n_disk:
+        for seed in range(1, args.seeds + 1):
+            if (args.reading, n, seed) in done:
+                continue
+            spec = SceneSpec(n_disk=n, seed=seed, **fields)
             options = RunOptions().for_scene(spec)
             check = options.check_steps
             divisors = [k for k in range(1, check + 1) if check % k == 0]
-            every = (
-                0
-                if args.no_dump
-                else min(divisors, key=lambda k: abs(k * options.step - DUMP_INTERVAL))
-            )
-            folder = args.out / f"{args.label}_n{n}_s{seed}"
+            every = min(divisors, key=lambda k: abs(k * options.step - DUMP_INTERVAL))
+            folder = scratch / f"{args.reading}_n{n}_s{seed}"
             result = run_impact(spec, folder, replace(options, dump_every=every))
             row = {k: result.get(k) for k in COLUMNS if k in result}
             row.update(
-                label=args.label,
+                label=args.reading,
                 n_disk=n,
                 seed=seed,
                 vn=spec.vn,
                 roughness=spec.roughness,
                 roughness_length=spec.roughness_length,
-                h=result.get("disk_spacing"),
             )
-            if every:
-                row.update(analyse(folder))
+            row.update(analyse(folder))
             shutil.rmtree(folder)
-            new = not args.table.exists()
-            with args.table.open("a", newline="") as handle:
+            new = not table.exists()
+            with table.open("a", newline="") as handle:
                 writer = csv.DictWriter(handle, COLUMNS, extrasaction="ignore")
                 if new:
                     writer.writeheader()
                 writer.writerow(
                     {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
                 )
-            print(
-                n,
-                seed,
-                {
-                    k: row.get(k)
-                    for k in (
-                        "e",
-                        "vibration_disk",
-                        "n_eff_peak",
-                        "patches_peak",
-                        "patch_width_peak",
-                        "coarse_1",
-                    )
-                },
-                flush=True,
-            )
+            print(n, seed, {k: row.get(k) for k in ("e", "vibration_disk", "inverted_max")})
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
