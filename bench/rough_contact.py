@@ -335,6 +335,7 @@ READINGS = {
     "smooth": {"roughness": 0.0},
     "L0.2_vn0.05": {"roughness_length": 0.2, "vn": 0.05},
     "smooth_vn0.25": {"roughness": 0.0, "vn": 0.25},
+    "L0.2_triangular": {"roughness_length": 0.2, "lattice": "triangular"},
 }
 GAMMA_DEG = 45.0
 SEEDS = Range(1, 64, integer=True)  # seeds 1 to this
