@@ -8,8 +8,9 @@ FIT_FROM points up, three forms are fitted by weighted least squares
 
 - ``h``: Q0 + c h;
 - ``h2``: Q0 + c h^2;
-- ``power``: Q0 + c h^p, p free (only with four levels or more, so that it
-  has a degree of freedom).
+- ``power``: Q0 + c h^p, p free in POWER_BOUNDS (only with four levels or
+  more, so that it has a degree of freedom; an exponent that ends on a bound
+  is not determined, and that fit describes nothing).
 
 A form describes the levels unless its chi^2 has a p-value below P_VALUE
 (with one degree of freedom chi2/dof 2.2 is p 0.14: it describes). The limit
@@ -42,7 +43,9 @@ P_VALUE = 0.05
 AGREE = 2.0
 FORMS = ("h", "h2", "power")
 FIXED_FORMS = ("h", "h2")
-POWER_BOUNDS = (0.05, 5.0)
+# The power law's exponent is sought in these bounds; one that ends on a
+# bound is not determined by the levels, and its intercept enters no band.
+POWER_BOUNDS = (0.25, 4.0)
 
 
 def spacing(n) -> np.ndarray:
@@ -67,7 +70,8 @@ def fit_form(n, q, sd, form: str) -> dict | None:
     dict
         ``limit``, ``limit_sd``, ``c``, ``c_sd``, ``p`` (1, 2 or fitted),
         ``p_sd`` (0 if fixed), ``chi2`` (per degree of freedom), ``dof``,
-        ``p_value``, ``describes`` and ``levels``.
+        ``p_value``, ``pinned`` (the exponent on a bound), ``describes`` and
+        ``levels``.
     """
     n, q, sd = (np.asarray(v, float) for v in (n, q, sd))
     h = spacing(n)
@@ -92,6 +96,8 @@ def fit_form(n, q, sd, form: str) -> dict | None:
     chi2 = float(np.sum(residual**2))
     dof = len(q) - parameters
     errors = np.sqrt(np.diag(cov))
+    p_value = float(stats.chi2.sf(chi2, dof))
+    pinned = form == "power" and not (POWER_BOUNDS[0] * 1.001 < coef[2] < POWER_BOUNDS[1] / 1.001)
     return {
         "form": form,
         "limit": float(coef[0]),
@@ -102,8 +108,9 @@ def fit_form(n, q, sd, form: str) -> dict | None:
         "p_sd": float(errors[2]) if form == "power" else 0.0,
         "chi2": chi2 / dof,
         "dof": dof,
-        "p_value": float(stats.chi2.sf(chi2, dof)),
-        "describes": bool(stats.chi2.sf(chi2, dof) >= P_VALUE),
+        "p_value": p_value,
+        "pinned": bool(pinned),
+        "describes": bool(p_value >= P_VALUE and not pinned and np.all(np.isfinite(errors))),
         "levels": len(q),
     }
 
@@ -156,11 +163,23 @@ def limit(levels: list[tuple[int, float, float]], steps: dict | None = None) -> 
         ``shift_800`` and ``shift_800_sd`` (the 800-point level's height
         above the limit by the fits' c).
     """
-    use = sorted(
-        (int(n), float(v), float(s))
-        for n, v, s in levels
-        if n >= FIT_FROM and np.isfinite(v) and np.isfinite(s) and s > 0
-    )
+    finest = sorted((int(n), float(v), float(s)) for n, v, s in levels if n >= FIT_FROM)
+    if len(finest) >= 3 and all(v == finest[0][1] and s == 0 for _, v, s in finest):
+        # the same at every level, without scatter (a share of 0, say): that value
+        return {
+            "levels": [n for n, _, _ in finest],
+            "forms": {},
+            "halvings": None,
+            "status": "limit",
+            "value": finest[0][1],
+            "stat": 0.0,
+            "systematic": 0.0,
+            "band": (finest[0][1], finest[0][1]),
+            "described_by": ["constant"],
+            "shift_800": 0.0,
+            "shift_800_sd": 0.0,
+        }
+    use = [(n, v, s) for n, v, s in finest if np.isfinite(v) and np.isfinite(s) and s > 0]
     out: dict = {"levels": [n for n, _, _ in use], "forms": {}, "halvings": halvings(use, steps)}
     if len(use) < 3:
         out["status"] = "too few"

@@ -88,3 +88,17 @@ def test_too_few_levels_and_coarse_ones_give_no_limit():
     out = limit([(200, 1.0, 0.1), (400, 1.0, 0.1), (800, 1.0, 0.1), (1600, 1.0, 0.1)])
     assert out["status"] == "too few" and out["levels"] == [800, 1600]
     assert halvings([(800, 1.0, 0.1), (3200, 1.0, 0.1)]) is None
+
+
+def test_a_value_the_same_at_every_level_without_scatter_is_its_own_limit():
+    out = limit([(n, 0.0, 0.0) for n in (800, 1600, 3200)])
+    assert out["status"] == "limit" and out["value"] == 0.0 and out["systematic"] == 0.0
+    assert limit([(800, 0.0, 0.0), (1600, 0.1, 0.0), (3200, 0.0, 0.0)])["status"] == "too few"
+
+
+def test_a_power_law_whose_exponent_ends_on_a_bound_describes_nothing():
+    # a step then flat: the best exponent runs to the largest bound
+    values = {800: 0.9, 1600: 0.7, 3200: 0.7, 6400: 0.7, 12800: 0.7}
+    n, q = zip(*values.items(), strict=True)
+    power = fit_form(n, q, [0.01] * 5, "power")
+    assert power["pinned"] and not power["describes"]
