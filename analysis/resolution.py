@@ -20,7 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import extrapolation
+from . import extrapolation, levels
 from .estimates import study_estimates
 from .measures import GRAZING_ANGLES
 from .readings import Setup
@@ -245,4 +245,63 @@ def means_by_angle(rows: list[dict], limit: str, lattice: str) -> dict[int, list
             se = lambda a: a.std(ddof=1) / np.sqrt(len(a)) if len(a) > 1 else np.nan  # noqa: E731
             points.append((cot, e.mean(), se(e), beta.mean(), se(beta)))
         out[n] = points
+    return out
+
+
+# The multilevel estimate's targets (issue 46): standard errors wanted.
+TARGETS = {"e_normal": 0.005, "mu": 0.01}
+
+
+def halving_chain(ns: list[int]) -> list[int]:
+    """The levels from extrapolation.FIT_FROM up that follow each other by halvings."""
+    chain = [n for n in ns if n == extrapolation.FIT_FROM]
+    while chain and 2 * chain[-1] in ns:
+        chain.append(2 * chain[-1])
+    return chain
+
+
+def multilevel(rows: list[dict], summary: dict, limit: str, lattice: str) -> dict:
+    """One reading and lattice's per-seed differences between resolutions
+    (``analysis.levels.coupled_differences`` of every group) and, per
+    quantity of TARGETS, Giles's seeds per level over the halvings from 800
+    points that are not left out: the level variances per seed (the
+    coarsest's from its error times its seeds; the differences' measured per
+    seed for e, and for Walton's mu, which has no per-seed value, the two
+    levels' per-seed variances summed, as for independent draws), the cost of
+    a seed in 800-point seeds, the allocation, and the finest level alone at
+    the same error."""
+    mine = [r for r in finished(rows) if r["limit"] == limit and r["study_lattice"] == lattice]
+    differences = {group: levels.coupled_differences(mine, group) for group in levels.GROUPS}
+    chain = halving_chain([n for n, *_ in levels_of(summary, limit, lattice, "e_normal")])
+    out = {"differences": differences, "plans": {}}
+    if len(chain) < 2:
+        return out
+    angles = len({r["gamma_deg"] for r in mine})
+    cost = {n: c * angles for n, c in levels.cost_per_impact(mine).items()}
+    unit = cost[chain[0]]
+
+    def per_seed(q: str, n: int) -> float:
+        entry = summary[(limit, lattice, n)]
+        return levels.variance_per_seed(entry["values"][q][1], entry["seeds"])
+
+    for q, target in TARGETS.items():
+        variances, costs = [per_seed(q, chain[0])], [cost[chain[0]] / unit]
+        measured = {d["n"]: d["sd_difference"] ** 2 for d in differences["e_normal"]}
+        for n in chain[1:]:
+            if q == "e_normal" and n in measured:
+                variances.append(measured[n])
+            else:
+                variances.append(per_seed(q, n) + per_seed(q, n // 2))
+            costs.append((cost[n] + cost[n // 2]) / unit)
+        plan = levels.allocation(variances, costs, target)
+        alone = max(np.ceil(per_seed(q, chain[-1]) / target**2), levels.MIN_SEEDS)
+        out["plans"][q] = {
+            "target": target,
+            "levels": chain,
+            "variances": variances,
+            "costs": costs,
+            **plan,
+            "finest_alone_seeds": int(alone),
+            "finest_alone_cost": float(alone * cost[chain[-1]] / unit),
+        }
     return out

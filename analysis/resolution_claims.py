@@ -57,7 +57,7 @@ CLAIMS = (
         None,
     ),
     (
-        "triangular disk: beta < 0 at every angle (share of angles with mean beta > 0: 0)",
+        "triangular: beta < 0 at every angle (share of angles with mean beta > 0: 0)",
         "triangular",
         "share_beta_positive",
         0.0,
@@ -65,7 +65,7 @@ CLAIMS = (
         None,
     ),
     (
-        "no contact runs off the wall (share within 1 R of a side: 0)",
+        "no contact near the wall's ends (share within 1 R of a side: 0)",
         "random",
         "share_near_side",
         0.0,
@@ -113,7 +113,7 @@ def limit_verdict(found: dict | None, claim: tuple) -> dict:
         status = found["status"] if found else "too few"
         why = {"too few": "too few levels", "no form": "no form describes the levels"}.get(status)
         if status == "not converged":
-            why = f"not converged at {found['halvings']['finest']}"
+            why = f"not converged at {found['halvings']['finest']:,}"
         return {"value": None, "error": None, "verdict": f"undecided ({why})"}
     error = math.hypot(found["stat"], found["systematic"])
     return {

@@ -34,7 +34,7 @@ def test_few_seeds_widen_the_error_to_the_t_interval_and_a_failing_fit_adds_its_
 
 def test_a_limit_not_established_is_undecided_and_one_within_its_band_is_judged():
     not_converged = {"status": "not converged", "halvings": {"finest": 12800}}
-    assert limit_verdict(not_converged, MU)["verdict"] == "undecided (not converged at 12800)"
+    assert limit_verdict(not_converged, MU)["verdict"] == "undecided (not converged at 12,800)"
     assert limit_verdict({"status": "too few"}, MU)["verdict"] == "undecided (too few levels)"
     found = {"status": "limit", "value": 0.13, "stat": 0.01, "systematic": 0.02}
     out = limit_verdict(found, MU)
