@@ -10,7 +10,9 @@ every level and in the limit N -> infinity:
   freedom) combined in quadrature, for a Walton fit that fails (chi2/dof above
   analysis.estimates.CHI2_LIMIT), with the fitting choice's systematic error;
 - in the limit, the extrapolation's statistical error and the band between
-  its forms (analysis.extrapolation) in quadrature; a quantity not converged,
+  its forms (analysis.extrapolation) in quadrature, and for a Walton fit
+  that fails at the finest level in the fits, that level's fitting-choice
+  systematic error; a quantity not converged,
   with too few levels or no form that describes it is "undecided", never
   judged;
 - a level left out of the fits (analysis.resolution.excluded) is not judged;
@@ -107,20 +109,34 @@ def judge(value: float, error: float, claim: tuple) -> str:
     return verdict(value, error, paper, rest[0])
 
 
-def limit_verdict(found: dict | None, claim: tuple) -> dict:
-    """The claim in the limit from ``analysis.extrapolation.limit``'s answer."""
+def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> dict:
+    """The claim in the limit from ``analysis.extrapolation.limit``'s answer,
+    with ``systematic`` (a fit's fitting-choice error) added in quadrature."""
     if not found or found["status"] != "limit":
         status = found["status"] if found else "too few"
         why = {"too few": "too few levels", "no form": "no form describes the levels"}.get(status)
         if status == "not converged":
             why = f"not converged at {found['halvings']['finest']:,}"
         return {"value": None, "error": None, "verdict": f"undecided ({why})"}
-    error = math.hypot(found["stat"], found["systematic"])
+    error = math.hypot(found["stat"], found["systematic"], systematic)
     return {
         "value": found["value"],
         "error": error,
         "verdict": judge(found["value"], error, claim),
     }
+
+
+def finest_systematic(
+    summary: dict, found: dict | None, reading: str, lattice: str, quantity: str, way: str | None
+) -> float:
+    """The fitting-choice systematic error of the finest level in the fits,
+    where that level's fit fails; 0 otherwise."""
+    if not way or not found or not found.get("levels"):
+        return 0.0
+    entry = summary[(reading, lattice, max(found["levels"]))]
+    if entry["chi2"][way] <= CHI2_LIMIT:
+        return 0.0
+    return entry["systematic"][quantity.removesuffix("_paper")]
 
 
 def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
@@ -155,11 +171,14 @@ def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
                 if found
                 else None
             )
+        found = limits.get((reading, lattice, quantity))
         out.append(
             {
                 "claim": text,
                 "cells": cells,
-                "limit": limit_verdict(limits.get((reading, lattice, quantity)), claim),
+                "limit": limit_verdict(
+                    found, claim, finest_systematic(summary, found, reading, lattice, quantity, way)
+                ),
             }
         )
     return out

@@ -149,7 +149,7 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
                 ax.plot(h[out], v[out], "x", color="k", ms=8)
             fit = found[(limit, lattice, q)]
             x = np.linspace(0.0, 1.0, 30)
-            for form, style in (("h", ":"), ("h2", "--")):
+            for form, style in (("h", ":"), ("h2", "--")) if fit["status"] == "limit" else ():
                 f = fit["forms"].get(form)
                 if f and f["describes"]:
                     ax.plot(x, f["limit"] + f["c"] * x ** f["p"], ls=style, color=colour, lw=0.8)
@@ -158,7 +158,8 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
     axes[0].legend(fontsize=6)
     fig.suptitle(
         f"error bars: seed bootstrap sd at {BOOTSTRAP_FROM}+ seeds, seed jackknife below; "
-        "dotted: Q0 + c h, dashed: Q0 + c h^2 (where they describe the levels); x: left out",
+        "dotted: Q0 + c h, dashed: Q0 + c h^2 (where a limit is given and they describe the "
+        "levels); x: left out",
         fontsize=8,
     )
     fig.tight_layout()

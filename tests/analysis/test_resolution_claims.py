@@ -67,3 +67,17 @@ def test_a_level_left_out_of_the_fits_is_not_judged_and_missing_lattices_are_ski
     assert mu["cells"][800]["verdict"] == "misses"
     assert mu["cells"][3200]["verdict"] == "not judged"
     assert not any("triangular" in c["claim"] for c in table)
+
+
+def test_in_the_limit_a_failing_fit_adds_the_finest_levels_systematic():
+    summary = {("r", "random", 800): entry(16, chi2=6.0), ("r", "random", 3200): entry(8, chi2=6.0)}
+    found = {
+        "status": "limit",
+        "value": 0.13,
+        "stat": 0.01,
+        "systematic": 0.02,
+        "levels": [800, 3200],
+    }
+    table = claims_table(summary, {("r", "random", "mu_paper"): found}, "r")
+    mu = next(c for c in table if c["claim"] == MU[0])
+    assert mu["limit"]["error"] == pytest.approx(math.hypot(0.01, 0.02, 0.03))
