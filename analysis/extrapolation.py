@@ -21,7 +21,9 @@ the band between the intercepts, stated separately.
 
 Before any limit, the last two halvings of h: with d_last = Q(N) - Q(N/2)
 and d_before = Q(N/2) - Q(N/4) at the finest N, a quantity whose last step is
-real (|d_last| above AGREE errors) and no smaller than the step before is
+real (|d_last| above AGREE errors; where the two levels share fewer than 16
+seeds, above the t quantile of a 95 % interval with the fewer seeds' n - 1
+degrees of freedom) and no smaller than the step before is
 "not converged at N", with both steps and their errors, never a limit. The
 levels' errors combine as independent draws (rows whose seeds are coupled
 across N pass the paired steps' own errors, ``steps``).
@@ -36,6 +38,8 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import optimize, stats
+
+from .seeds import BOOTSTRAP_FROM, interval_factor
 
 REFERENCE_N = 800
 FIT_FROM = 800
@@ -115,7 +119,11 @@ def fit_form(n, q, sd, form: str) -> dict | None:
     }
 
 
-def halvings(levels: list[tuple[int, float, float]], steps: dict | None = None) -> dict | None:
+def halvings(
+    levels: list[tuple[int, float, float]],
+    steps: dict | None = None,
+    seeds: dict | None = None,
+) -> dict | None:
     """The last two halvings of h at the finest level (module docstring), or
     None without levels N, N/2 and N/4.
 
@@ -125,6 +133,9 @@ def halvings(levels: list[tuple[int, float, float]], steps: dict | None = None) 
     steps : dict, optional
         N -> (Q(N) - Q(N/2), its error) from coupled seeds; default the
         levels' values and errors combined as independent.
+    seeds : dict, optional
+        N -> the level's seeds: below BOOTSTRAP_FROM the last step is real
+        beyond the t quantile (``analysis.seeds.interval_factor``), not AGREE.
     """
     by_n = {int(n): (v, s) for n, v, s in levels}
     finest = max(by_n, default=0)
@@ -138,19 +149,27 @@ def halvings(levels: list[tuple[int, float, float]], steps: dict | None = None) 
         return a - b, float(np.hypot(sa, sb))
 
     last, before = step(finest), step(finest // 2)
-    real = abs(last[0]) > AGREE * last[1]
+    few = min(seeds.get(finest, 0), seeds.get(finest // 2, 0)) if seeds else BOOTSTRAP_FROM
+    threshold = AGREE if few >= BOOTSTRAP_FROM or few < 2 else interval_factor(few)
+    real = abs(last[0]) > threshold * last[1]
     converged = not (real and abs(last[0]) >= abs(before[0]))
     return {
         "finest": finest,
         "last": last,
         "before": before,
+        "threshold": float(threshold),
         "last_is_real": bool(real),
         "converged": bool(converged),
     }
 
 
-def limit(levels: list[tuple[int, float, float]], steps: dict | None = None) -> dict:
-    """A quantity's limit N -> infinity from its levels (N, value, sd).
+def limit(
+    levels: list[tuple[int, float, float]],
+    steps: dict | None = None,
+    seeds: dict | None = None,
+) -> dict:
+    """A quantity's limit N -> infinity from its levels (N, value, sd);
+    ``steps`` and ``seeds`` as for ``halvings``.
 
     Returns
     -------
@@ -180,7 +199,11 @@ def limit(levels: list[tuple[int, float, float]], steps: dict | None = None) -> 
             "shift_800_sd": 0.0,
         }
     use = [(n, v, s) for n, v, s in finest if np.isfinite(v) and np.isfinite(s) and s > 0]
-    out: dict = {"levels": [n for n, _, _ in use], "forms": {}, "halvings": halvings(use, steps)}
+    out: dict = {
+        "levels": [n for n, _, _ in use],
+        "forms": {},
+        "halvings": halvings(use, steps, seeds),
+    }
     if len(use) < 3:
         out["status"] = "too few"
         return out

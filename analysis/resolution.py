@@ -105,6 +105,8 @@ QUANTITIES = (
     ("beta0", "Walton's beta0 (measured way)"),
     ("mu_eff_top", "mu_eff at the sliding branch's top"),
 )
+# The quantities whose steps between resolutions are paired by seed (``limits``).
+PAIRED = ("e_normal", "e_grazing")
 # Walton's fitted parameters, which carry the fitting choice's systematic error.
 FITTED = ("mu", "beta0", "mu_paper", "beta0_paper")
 # A level with more than this share of its impacts over the drift limit, or
@@ -214,15 +216,31 @@ def levels_of(summary: dict, limit: str, lattice: str, quantity: str, fitted_onl
     ]
 
 
-def limits(summary: dict, quantities=tuple(q for q, _ in QUANTITIES)) -> dict:
+def limits(
+    summary: dict, quantities=tuple(q for q, _ in QUANTITIES), rows: list[dict] | None = None
+) -> dict:
     """(limit, lattice, quantity) -> ``analysis.extrapolation.limit`` of its
-    levels that are not excluded."""
+    levels that are not excluded, each level's seeds setting the test of its
+    steps; with ``rows``, the steps of the quantities that have a value per
+    seed (PAIRED) are the per-seed differences paired by seed and angle
+    (``analysis.levels.coupled_differences``: right whether or not the seeds
+    are coupled across N, and tighter where they are)."""
     pairs = sorted({(k[0], k[1]) for k in summary}, key=order)
-    return {
-        (limit, lattice, q): extrapolation.limit(levels_of(summary, limit, lattice, q))
-        for limit, lattice in pairs
-        for q in quantities
-    }
+    out = {}
+    for limit, lattice in pairs:
+        seeds = {
+            n: s["seeds"] for (li, la, n), s in summary.items() if (li, la) == (limit, lattice)
+        }
+        mine = [r for r in rows or () if r["limit"] == limit and r["study_lattice"] == lattice]
+        for q in quantities:
+            steps = None
+            if mine and q in PAIRED:
+                found = levels.coupled_differences(mine, q)
+                steps = {d["n"]: (d["mean"], d["se"]) for d in found}
+            out[(limit, lattice, q)] = extrapolation.limit(
+                levels_of(summary, limit, lattice, q), steps, seeds
+            )
+    return out
 
 
 def order(key: tuple[str, str]) -> tuple[int, str]:

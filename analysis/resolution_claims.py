@@ -35,7 +35,7 @@ CLAIMS = (
     ("e near 0.8 (mean e at cot gamma >= 1)", "random", "e_normal", 0.8, NEAR["e"], None),
     ("Walton's mu near 0.18 (the paper's way)", "random", "mu_paper", 0.18, NEAR["mu"], "paper"),
     (
-        "Walton's mu near 0.18 (mu_eff at the sliding branch's top)",
+        "mu near 0.18 (mu_eff at the sliding branch's top)",
         "random",
         "mu_eff_top",
         0.18,
@@ -67,7 +67,7 @@ CLAIMS = (
         None,
     ),
     (
-        "no contact near the wall's ends (share within 1 R of a side: 0)",
+        "no contact near the wall's ends (share within 1 R: 0)",
         "random",
         "share_near_side",
         0.0,

@@ -38,6 +38,9 @@ FIGURE_CURVES = "resolution_curves.png"
 FIGURE_TRENDS = "resolution_trends.png"
 LIMITS_CSV = "limits.csv"
 LEVELS_CSV = "levels.csv"
+# The page stays below this many bytes: past it, the tables against N are
+# left to levels.csv.
+PAGE_BYTES = 20_000
 # What each reading of the study is (a reading not named here: its options).
 READINGS = {
     "continuum": "the roughness a Gaussian profile of correlation length 0.048 R along each "
@@ -171,7 +174,7 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     """The page's body; its two figures and two CSV tables go into ``figures``."""
     summary = summaries(rows)
     wanted = tuple(dict.fromkeys([q for q, _ in QUANTITIES] + [c[2] for c in CLAIMS]))
-    found = limits(summary, wanted)
+    found = limits(summary, wanted, rows)
     quantities = {k: v for k, v in found.items() if k[2] in dict(QUANTITIES)}
     shown = {k: v for k, v in quantities.items() if v["status"] != "too few"}
     too_few = sorted({k[:2] for k, v in quantities.items() if v["status"] == "too few"}, key=order)
@@ -184,6 +187,23 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     tables.write_limits_csv(found, figures / LIMITS_CSV)
     tables.write_levels_csv(summary, figures / LEVELS_CSV)
     readings = sorted({r for r, _ in pairs}, key=lambda r: order((r, "")))
+    per_n = [
+        {
+            "reading": r,
+            "lattice": la,
+            "table": markdown_table(*tables.level_rows(summary, r, la, extrapolation.FIT_FROM)),
+        }
+        for r, la in pairs
+    ]
+    text = render_page(setup, rows, summary, found, shown, too_few, levels, readings, per_n)
+    if len(text.encode()) > PAGE_BYTES:
+        text = render_page(setup, rows, summary, found, shown, too_few, levels, readings, [])
+    return text
+
+
+def render_page(setup, rows, summary, found, shown, too_few, levels, readings, per_n) -> str:
+    """The template with the page's numbers; ``per_n`` empty: the tables
+    against N only in levels.csv."""
     return render(
         "resolution.md.j2",
         study=setup.study,
@@ -210,14 +230,7 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
         ],
         differences=tables.differences_table(levels),
         plans=tables.plans_table(levels),
-        per_n=[
-            {
-                "reading": r,
-                "lattice": la,
-                "table": markdown_table(*tables.level_rows(summary, r, la)),
-            }
-            for r, la in pairs
-        ],
+        per_n=per_n,
         figures=setup.figures,
         curves=FIGURE_CURVES,
         trends=FIGURE_TRENDS,

@@ -30,8 +30,8 @@ def limit_text(found: dict) -> str:
         if found["described_by"] == ["constant"]:
             return f"{found['value']:.3f} at every level"
         return (
-            f"{found['value']:.3f} +- {found['stat']:.3f} (stat) +- {found['systematic']:.3f} "
-            f"(form: {found['band'][0]:.3f} to {found['band'][1]:.3f})"
+            f"{found['value']:.3f} +- {found['stat']:.3f} +- {found['systematic']:.3f} form "
+            f"({found['band'][0]:.3f} to {found['band'][1]:.3f})"
         )
     if status == "not converged":
         return f"not converged at N = {found['halvings']['finest']:,}"
@@ -141,13 +141,16 @@ def plans_table(multilevel: dict) -> str:
     return markdown_table(header, body)
 
 
-def level_rows(summary: dict, reading: str, lattice: str) -> tuple[list[str], list[list[str]]]:
-    """One reading's levels: seeds and errors, impacts, drift, short angles and quantities."""
-    header = ["N", "seeds (errors)", "impacts (failed; over the drift limit)"]
+def level_rows(
+    summary: dict, reading: str, lattice: str, start: int = 0
+) -> tuple[list[str], list[list[str]]]:
+    """One reading's levels from ``start`` points: seeds and errors, impacts,
+    failures, impacts over the drift limit and the quantities."""
+    header = ["N", "seeds (errors)", "impacts"]
     header += [q for q, _ in QUANTITIES] + ["Walton chi2/dof (measured, paper's)"]
     body = []
     for (li, la, n), s in sorted(summary.items()):
-        if (li, la) != (reading, lattice):
+        if (li, la) != (reading, lattice) or n < start:
             continue
         method = s.get("errors", {}).get("method", "-")
         cells = [f"{n:,}" + (" (left out)" if s["excluded"] else ""), f"{s['seeds']} ({method})"]

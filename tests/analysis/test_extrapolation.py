@@ -102,3 +102,14 @@ def test_a_power_law_whose_exponent_ends_on_a_bound_describes_nothing():
     n, q = zip(*values.items(), strict=True)
     power = fit_form(n, q, [0.01] * 5, "power")
     assert power["pinned"] and not power["describes"]
+
+
+def test_at_few_seeds_a_step_is_real_only_beyond_the_t_quantile():
+    # the last step 2.5 errors: real at 16 seeds (beyond 2), not at 4 (t 3.18)
+    values = [(800, 0.80, 0.0), (1600, 0.78, 0.0), (3200, 0.755, 0.0)]
+    steps = {3200: (-0.025, 0.01), 1600: (-0.02, 0.01)}
+    many = halvings(values, steps, seeds={800: 16, 1600: 16, 3200: 16})
+    few = halvings(values, steps, seeds={800: 16, 1600: 16, 3200: 4})
+    assert many["last_is_real"] and not many["converged"]
+    assert few["threshold"] == pytest.approx(3.182446, rel=1e-6)
+    assert not few["last_is_real"] and few["converged"]

@@ -66,7 +66,7 @@ def test_a_new_reading_gets_its_page_with_its_errors_named(made):
 def test_a_level_over_the_drift_limit_is_left_out_and_said_to_be(made):
     text, _ = made
     assert "profile, random, 3,200 points (64 of 64 impacts over the drift limit)" in text
-    assert "| 3,200 (left out) |" in text
+    assert "| 3,200 (left out) | 4 (jackknife) |" in text
 
 
 def test_the_limit_of_e_comes_from_the_levels_it_keeps():
@@ -104,3 +104,16 @@ def test_the_plan_thins_seeds_with_cost_and_keeps_the_per_point_readings_small()
     assert resolution.plan({"n_disk": 800, "limit": "point-roughness"}, Grid()).lattices == (
         "random",
     )
+
+
+def test_past_its_size_the_page_leaves_the_tables_against_n_to_the_csv(tmp_path, monkeypatch):
+    import pages.resolution as module
+
+    study = {"angles": 16, "vn": 0.1, "samples": 4, "lattices": ["random"]}
+    monkeypatch.setattr(module, "PAGE_BYTES", 1000)
+    text = page(reading_rows(), Setup(study=study, choices=()), tmp_path)
+    assert "### profile\n" in text  # its claims
+    assert "| 1,600 | 4 (jackknife) |" not in text
+    assert "(not on this page, which would pass 20 KB)" in text
+    with (tmp_path / "levels.csv").open() as handle:
+        assert sum(line.startswith("profile,random,") for line in handle) == len(LEVELS)
