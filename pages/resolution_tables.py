@@ -36,7 +36,7 @@ def limit_text(found: dict) -> str:
     if status == "not converged":
         return f"not converged at N = {found['halvings']['finest']:,}"
     if status == "no form":
-        return "no limit: no form describes the levels"
+        return "undecided: no form describes the levels"
     return "too few levels from 800 points"
 
 
