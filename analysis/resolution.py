@@ -1,17 +1,18 @@
 """e, beta and the fits against the disk's resolution (studies/resolution.toml,
-docs/resolution.md).
+docs/resolution.md), for any reading (the rows' ``limit``) and any levels.
 
 The study runs the random and triangular disks from 200 to 12,800 points on
-walls of twice their points, under three readings of how the model is carried
-to finer disks (analysis.readings.LIMITS): "continuum" (a roughness profile of
-fixed correlation length, the contact scaled with the spacing), and each of the
-paper's per-point readings in turn. Fewer seeds where an impact costs more
-(``plan``). Per reading and resolution: the model-free measures and Walton's
-measured-way fit of every study (analysis.estimates.study_estimates on that
-resolution's impacts alone, with its seed-bootstrap errors), then, per
-quantity, a weighted straight line in the spacing h = sqrt(800 / N) through
-the resolutions from 800 points up, whose intercept is the estimate of the
-limit N -> infinity (its page: pages.resolution).
+walls of twice their points, under readings of how the model is carried to
+finer disks (analysis.readings.LIMITS). Fewer seeds where an impact costs
+more (``plan``). Per reading and resolution (``summaries``): the model-free
+measures and Walton's fits both ways (analysis.estimates.study_estimates on
+that resolution's impacts alone; errors by the seed count,
+analysis.seeds.seed_errors), the fitting choice's systematic error, and
+whether the level is left out of the fits (too many impacts over the drift
+limit or failed). Per quantity, its limit with the form's band or "not
+converged" (``limits``, analysis.extrapolation), and per reading the
+per-seed differences between resolutions and Giles's allocation of seeds
+(``multilevel``, analysis.levels). Its page: pages.resolution.
 """
 
 from __future__ import annotations
