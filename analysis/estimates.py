@@ -29,7 +29,7 @@ import numpy as np
 
 from .fits import Means, compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
 from .measures import measures, sliding_branch
-from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_tables
+from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_errors, seed_tables
 from .table import NEAR_SIDE, NEAR_SIDE_SHARE, held
 from .theory import nu_for_eta, walton_beta
 
@@ -231,7 +231,9 @@ def systematic(fits: list[dict], parameters) -> dict:
     }
 
 
-def study_estimates(rows: list[dict], resamples: int = 200, compliant: bool = True):
+def study_estimates(
+    rows: list[dict], resamples: int = 200, compliant: bool = True, by_seed_count: bool = False
+):
     """Every number of a study with its seed-bootstrap error.
 
     Parameters
@@ -243,6 +245,10 @@ def study_estimates(rows: list[dict], resamples: int = 200, compliant: bool = Tr
     compliant : bool
         Fit the compliant model too (slower: a few seconds per lattice and way
         for the fit to all the data, and a tenth of a second per resample).
+    by_seed_count : bool
+        The errors by the method the seed count calls for
+        (``analysis.seeds.seed_errors``: the jackknife below 16 seeds)
+        instead of the bootstrap at any count.
 
     Returns
     -------
@@ -264,7 +270,6 @@ def study_estimates(rows: list[dict], resamples: int = 200, compliant: bool = Tr
             for name in ("paper", "measured"):
                 if theory == "compliant":
                     study.starts[(lattice, theory, name)] = float(best[(lattice, theory, name)][0])
-    sd = seed_bootstrap(study.tables, study.statistic, resamples) if study.tables else {}
     errors = {
         "kind": f"sd over {resamples} seed-bootstrap resamples",
         "resamples": resamples,
@@ -272,6 +277,11 @@ def study_estimates(rows: list[dict], resamples: int = 200, compliant: bool = Tr
         "unit": "whole seeds: a resample draws the study's seeds with replacement and takes "
         "each drawn seed's impacts at every angle of every lattice together",
     }
+    if by_seed_count and study.tables:
+        sd, chosen = seed_errors(study.tables, study.statistic, resamples)
+        errors.update(chosen)
+    else:
+        sd = seed_bootstrap(study.tables, study.statistic, resamples) if study.tables else {}
     fits = {
         "errors": errors,
         "paper": dict(PAPER, nu_of_eta=nu_for_eta(PAPER["eta"])),

@@ -1,17 +1,18 @@
 """e, beta and the fits against the disk's resolution (studies/resolution.toml,
-docs/resolution.md).
+docs/resolution.md), for any reading (the rows' ``limit``) and any levels.
 
 The study runs the random and triangular disks from 200 to 12,800 points on
-walls of twice their points, under three readings of how the model is carried
-to finer disks (analysis.readings.LIMITS): "continuum" (a roughness profile of
-fixed correlation length, the contact scaled with the spacing), and each of the
-paper's per-point readings in turn. Fewer seeds where an impact costs more
-(``plan``). Per reading and resolution: the model-free measures and Walton's
-measured-way fit of every study (analysis.estimates.study_estimates on that
-resolution's impacts alone, with its seed-bootstrap errors), then, per
-quantity, a weighted straight line in the spacing h = sqrt(800 / N) through
-the resolutions from 800 points up, whose intercept is the estimate of the
-limit N -> infinity (its page: pages.resolution).
+walls of twice their points, under readings of how the model is carried to
+finer disks (analysis.readings.LIMITS). Fewer seeds where an impact costs
+more (``plan``). Per reading and resolution (``summaries``): the model-free
+measures and Walton's fits both ways (analysis.estimates.study_estimates on
+that resolution's impacts alone; errors by the seed count,
+analysis.seeds.seed_errors), the fitting choice's systematic error, and
+whether the level is left out of the fits (too many impacts over the drift
+limit or failed). Per quantity, its limit with the form's band or "not
+converged" (``limits``, analysis.extrapolation), and per reading the
+per-seed differences between resolutions and Giles's allocation of seeds
+(``multilevel``, analysis.levels). Its page: pages.resolution.
 """
 
 from __future__ import annotations
@@ -20,7 +21,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from . import extrapolation, levels
 from .estimates import study_estimates
+from .measures import GRAZING_ANGLES
 from .readings import Setup
 
 COLUMNS = (
@@ -98,39 +101,76 @@ RESAMPLES = 200
 # The quantities followed against N: (key, label); ``extract`` reads them.
 QUANTITIES = (
     ("e_normal", "e near normal incidence (cot gamma >= 1)"),
+    ("e_grazing", "e at grazing incidence (3 smallest cot gamma)"),
     ("mu", "Walton's mu (measured way)"),
     ("beta0", "Walton's beta0 (measured way)"),
     ("mu_eff_top", "mu_eff at the sliding branch's top"),
-    ("e_grazing", "e at grazing incidence (3 smallest cot gamma)"),
 )
-# The extrapolation uses the resolutions from this many points up.
-EXTRAPOLATE_FROM = 800
-# Two numbers agree when they differ by less than this many combined errors.
-AGREE = 2.0
-CHI2_LIMIT = 2.0
+# The quantities whose steps between resolutions are paired by seed (``limits``).
+PAIRED = ("e_normal", "e_grazing")
+# Walton's fitted parameters, which carry the fitting choice's systematic error.
+FITTED = ("mu", "beta0", "mu_paper", "beta0_paper")
+# A level with more than this share of its impacts over the drift limit, or
+# failed, is left out of the fits (its numbers are shown, marked).
+DRIFT_SHARE = 0.1
+FAILED_SHARE = 0.1
 
 
 def finished(rows: list[dict]) -> list[dict]:
     return [r for r in rows if not r.get("error") and r.get("e") not in (None, "")]
 
 
-def extract(entry: dict) -> dict[str, tuple[float, float]]:
-    """(value, seed-bootstrap sd) of each of QUANTITIES from a fits.json lattice entry."""
-    walton = entry["walton"]["measured"]
-    measures = entry["measures"]
+def extract(fits: dict, lattice: str) -> dict[str, tuple[float, float]]:
+    """(value, statistical error) of each quantity from one level's
+    ``study_estimates``: QUANTITIES, the paper's-way fit (``mu_paper``,
+    ``beta0_paper``), ``beta_normal``, ``share_beta_positive`` and
+    ``share_near_side``."""
+    entry = fits["lattices"][lattice]
     out = {
-        key: (measures[key]["value"], measures[key]["sd"])
-        for key in measures
-        if key in dict(QUANTITIES)
+        key: (value["value"], value["sd"])
+        for key, value in entry["measures"].items()
+        if key != "mu_eff" and value["value"] is not None
     }
-    out["mu"] = (walton["mu"], walton["mu_sd"])
-    out["beta0"] = (walton["beta0"], walton["beta0_sd"])
-    out["mu_chi2"] = (walton["chi2"], float("nan"))
-    return out
+    for way, suffix in (("measured", ""), ("paper", "_paper")):
+        walton = entry["walton"][way]
+        out[f"mu{suffix}"] = (walton["mu"], walton["mu_sd"])
+        out[f"beta0{suffix}"] = (walton["beta0"], walton["beta0_sd"])
+    return {k: (float(v), float(s) if s is not None else float("nan")) for k, (v, s) in out.items()}
+
+
+def grazing_peak(done: list[dict], mean_sd: dict, lattice: str) -> tuple[float, float]:
+    """The largest mean e of the GRAZING_ANGLES most grazing angles, with its
+    error (the letter's e > 1 grazing peak)."""
+    best = None
+    for gamma in sorted({float(r["gamma_deg"]) for r in done}, reverse=True)[:GRAZING_ANGLES]:
+        e = np.mean([float(r["e"]) for r in done if float(r["gamma_deg"]) == gamma])
+        if best is None or e > best[0]:
+            best = (float(e), float(mean_sd[(lattice, gamma)]["e_seed_sd"]))
+    return best
+
+
+def short_angles(done: list[dict], seeds: int) -> list[tuple[float, int]]:
+    """(gamma_deg, seeds) of the angles that rest on fewer than all the level's seeds."""
+    count: dict[float, set] = {}
+    for r in done:
+        count.setdefault(float(r["gamma_deg"]), set()).add(r["seed"])
+    return [(g, len(s)) for g, s in sorted(count.items()) if len(s) < seeds]
+
+
+def excluded(entry: dict) -> str | None:
+    """Why a level is left out of the fits (DRIFT_SHARE, FAILED_SHARE), or None."""
+    if entry["impacts"] and entry["drifted"] > DRIFT_SHARE * entry["impacts"]:
+        return f"{entry['drifted']} of {entry['impacts']} impacts over the drift limit"
+    if entry["impacts"] and entry["failed"] > FAILED_SHARE * entry["impacts"]:
+        return f"{entry['failed']} of {entry['impacts']} impacts failed"
+    return None
 
 
 def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
-    """(limit, lattice, n_disk) -> its quantities, impacts, seeds, failures and drift."""
+    """(limit, lattice, n_disk) -> its quantities (value, statistical error),
+    Walton's fitting-choice systematic and chi2/dof, impacts, seeds, the
+    errors' method, failures, drift, the angles short of seeds and whether
+    the level is left out of the fits."""
     out = {}
     keys = sorted({(r["limit"], r["study_lattice"], int(r["n_disk"])) for r in rows})
     for limit, lattice, n_disk in keys:
@@ -140,62 +180,67 @@ def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
             if r["limit"] == limit and r["study_lattice"] == lattice and int(r["n_disk"]) == n_disk
         ]
         done = finished(group)
+        seeds = len({r["seed"] for r in group})
         entry = {
             "impacts": len(group),
             "failed": len(group) - len(done),
-            "seeds": len({r["seed"] for r in group}),
+            "seeds": seeds,
             "dt": float(done[0]["dt"]) if done else float("nan"),
             "drift": max((abs(float(r["energy_drift"])) for r in done), default=float("nan")),
             "drifted": sum(r["drift_exceeded"] in ("True", "true", "1") for r in done),
+            "short_angles": short_angles(done, seeds),
+            "values": {},
         }
+        entry["excluded"] = excluded(entry)
         if done:
-            fits, _ = study_estimates(done, resamples=RESAMPLES, compliant=False)
-            entry.update(extract(fits["lattices"][lattice]))
+            fits, mean_sd = study_estimates(
+                done, resamples=RESAMPLES, compliant=False, by_seed_count=True
+            )
+            entry["values"] = extract(fits, lattice)
+            entry["values"]["e_peak_grazing"] = grazing_peak(done, mean_sd, lattice)
+            walton = fits["lattices"][lattice]["walton"]
+            entry["systematic"] = walton["systematic"]
+            entry["chi2"] = {way: walton[way]["chi2"] for way in ("measured", "paper")}
+            entry["errors"] = fits["errors"]
         out[(limit, lattice, n_disk)] = entry
     return out
 
 
-def extrapolate(points: list[tuple[int, float, float]]) -> dict | None:
-    """Weighted line q = q_inf + A h, h = sqrt(800 / N), through (N, q, sd)
-    with N >= EXTRAPOLATE_FROM; None with fewer than three such points."""
-    use = [(n, q, s) for n, q, s in points if n >= EXTRAPOLATE_FROM and s > 0 and np.isfinite(q)]
-    if len(use) < 3:
-        return None
-    n, q, s = (np.array(v, float) for v in zip(*use, strict=True))
-    h = np.sqrt(800.0 / n)
-    design = np.stack([np.ones_like(h), h], axis=1) / s[:, None]
-    coef, *_ = np.linalg.lstsq(design, q / s, rcond=None)
-    covariance = np.linalg.inv(design.T @ design)
-    chi2 = float(np.sum(((q - design @ coef * s) / s) ** 2) / (len(q) - 2))
-    return {
-        "limit": float(coef[0]),
-        "limit_sd": float(np.sqrt(covariance[0, 0])),
-        "slope": float(coef[1]),
-        "slope_sd": float(np.sqrt(covariance[1, 1])),
-        "chi2": chi2,
-        "points": len(q),
-        "from": int(n.min()),
-        "to": int(n.max()),
-    }
+def levels_of(summary: dict, limit: str, lattice: str, quantity: str, fitted_only: bool = True):
+    """[(N, value, error)] of one quantity, the excluded levels left out if ``fitted_only``."""
+    return [
+        (n, *entry["values"][quantity])
+        for (li, la, n), entry in sorted(summary.items())
+        if (li, la) == (limit, lattice)
+        and quantity in entry["values"]
+        and not (fitted_only and entry["excluded"])
+    ]
 
 
-def limit_lines(summary: dict) -> dict:
-    """Per (limit, lattice, quantity): its points (N, value, sd), the line
-    ``extrapolate`` gives, the 800-point value and the finest (N, value)."""
+def limits(
+    summary: dict, quantities=tuple(q for q, _ in QUANTITIES), rows: list[dict] | None = None
+) -> dict:
+    """(limit, lattice, quantity) -> ``analysis.extrapolation.limit`` of its
+    levels that are not excluded, each level's seeds setting the test of its
+    steps; with ``rows``, the steps of the quantities that have a value per
+    seed (PAIRED) are the per-seed differences paired by seed and angle
+    (``analysis.levels.coupled_differences``: right whether or not the seeds
+    are coupled across N, and tighter where they are)."""
+    pairs = sorted({(k[0], k[1]) for k in summary}, key=order)
     out = {}
-    for limit, lattice in sorted({(k[0], k[1]) for k in summary}, key=order):
-        ns = sorted(n for (li, la, n) in summary if (li, la) == (limit, lattice))
-        for q, _ in QUANTITIES:
-            points = [
-                (n, *summary[(limit, lattice, n)][q])
-                for n in ns
-                if q in summary[(limit, lattice, n)]
-            ]
-            out[(limit, lattice, q)] = {
-                "line": extrapolate(points),
-                "at_800": next(((v, s) for n, v, s in points if n == 800), None),
-                "finest": (points[-1][0], points[-1][1]) if points else None,
-            }
+    for limit, lattice in pairs:
+        seeds = {
+            n: s["seeds"] for (li, la, n), s in summary.items() if (li, la) == (limit, lattice)
+        }
+        mine = [r for r in rows or () if r["limit"] == limit and r["study_lattice"] == lattice]
+        for q in quantities:
+            steps = None
+            if mine and q in PAIRED:
+                found = levels.coupled_differences(mine, q)
+                steps = {d["n"]: (d["mean"], d["se"]) for d in found}
+            out[(limit, lattice, q)] = extrapolation.limit(
+                levels_of(summary, limit, lattice, q), steps, seeds
+            )
     return out
 
 
@@ -219,4 +264,63 @@ def means_by_angle(rows: list[dict], limit: str, lattice: str) -> dict[int, list
             se = lambda a: a.std(ddof=1) / np.sqrt(len(a)) if len(a) > 1 else np.nan  # noqa: E731
             points.append((cot, e.mean(), se(e), beta.mean(), se(beta)))
         out[n] = points
+    return out
+
+
+# The multilevel estimate's targets (issue 46): standard errors wanted.
+TARGETS = {"e_normal": 0.005, "mu": 0.01}
+
+
+def halving_chain(ns: list[int]) -> list[int]:
+    """The levels from extrapolation.FIT_FROM up that follow each other by halvings."""
+    chain = [n for n in ns if n == extrapolation.FIT_FROM]
+    while chain and 2 * chain[-1] in ns:
+        chain.append(2 * chain[-1])
+    return chain
+
+
+def multilevel(rows: list[dict], summary: dict, limit: str, lattice: str) -> dict:
+    """One reading and lattice's per-seed differences between resolutions
+    (``analysis.levels.coupled_differences`` of every group) and, per
+    quantity of TARGETS, Giles's seeds per level over the halvings from 800
+    points that are not left out: the level variances per seed (the
+    coarsest's from its error times its seeds; the differences' measured per
+    seed for e, and for Walton's mu, which has no per-seed value, the two
+    levels' per-seed variances summed, as for independent draws), the cost of
+    a seed in 800-point seeds, the allocation, and the finest level alone at
+    the same error."""
+    mine = [r for r in finished(rows) if r["limit"] == limit and r["study_lattice"] == lattice]
+    differences = {group: levels.coupled_differences(mine, group) for group in levels.GROUPS}
+    chain = halving_chain([n for n, *_ in levels_of(summary, limit, lattice, "e_normal")])
+    out = {"differences": differences, "plans": {}}
+    if len(chain) < 2:
+        return out
+    angles = len({r["gamma_deg"] for r in mine})
+    cost = {n: c * angles for n, c in levels.cost_per_impact(mine).items()}
+    unit = cost[chain[0]]
+
+    def per_seed(q: str, n: int) -> float:
+        entry = summary[(limit, lattice, n)]
+        return levels.variance_per_seed(entry["values"][q][1], entry["seeds"])
+
+    for q, target in TARGETS.items():
+        variances, costs = [per_seed(q, chain[0])], [cost[chain[0]] / unit]
+        measured = {d["n"]: d["sd_difference"] ** 2 for d in differences["e_normal"]}
+        for n in chain[1:]:
+            if q == "e_normal" and n in measured:
+                variances.append(measured[n])
+            else:
+                variances.append(per_seed(q, n) + per_seed(q, n // 2))
+            costs.append((cost[n] + cost[n // 2]) / unit)
+        plan = levels.allocation(variances, costs, target)
+        alone = max(np.ceil(per_seed(q, chain[-1]) / target**2), levels.MIN_SEEDS)
+        out["plans"][q] = {
+            "target": target,
+            "levels": chain,
+            "variances": variances,
+            "costs": costs,
+            **plan,
+            "finest_alone_seeds": int(alone),
+            "finest_alone_cost": float(alone * cost[chain[-1]] / unit),
+        }
     return out

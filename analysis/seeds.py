@@ -8,6 +8,13 @@ replacement and takes each drawn seed's impacts at every angle of every
 lattice together. Any number computed from the impacts (a mean, a fitted
 parameter, a difference between lattices) gets as its error the standard
 deviation of its values over the resamples.
+
+A bootstrap of few seeds has few distinct resamples and is biased low (by
+sqrt((n - 1) / n)); below ``BOOTSTRAP_FROM`` seeds the error is the
+jackknife over whole seeds instead (``seed_errors`` chooses): every number
+recomputed with each seed left out in turn, whose spread gives the standard
+error (for a mean: exactly sd / sqrt(n)), with n - 1 degrees of freedom for
+intervals (``interval_factor``).
 """
 
 from __future__ import annotations
@@ -16,6 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import stats
 
 from .table import AVERAGED
 
@@ -24,6 +32,10 @@ QUANTITIES = (*AVERAGED, "side_clearance")
 # The generator of the resamples: a fixed seed, so that a page is made again
 # with the same errors.
 RNG_SEED = 0
+# At this many seeds or more the seed bootstrap; below, the seed jackknife.
+BOOTSTRAP_FROM = 16
+# Intervals: this two-sided coverage, from t with n - 1 degrees of freedom.
+COVERAGE = 0.95
 
 
 @dataclass(frozen=True)
@@ -152,3 +164,79 @@ def seed_bootstrap(
             spread = np.nanstd(np.where(finite > 1, values, 0.0), axis=0, ddof=1)
         sd[key] = np.where(finite > 1, spread, np.nan)
     return sd
+
+
+def error_method(seeds: int) -> str:
+    """The error of a number resting on ``seeds`` whole seeds: "bootstrap" at
+    BOOTSTRAP_FROM or more, "jackknife" below (module docstring)."""
+    return "bootstrap" if seeds >= BOOTSTRAP_FROM else "jackknife"
+
+
+def interval_factor(seeds: int, coverage: float = COVERAGE) -> float:
+    """Errors to a two-sided interval of ``coverage`` for a number resting on
+    ``seeds`` seeds: the t quantile with seeds - 1 degrees of freedom (1.96
+    -> 3.18 at four seeds)."""
+    if seeds < 2:
+        return float("nan")
+    return float(stats.t.ppf(0.5 + coverage / 2, seeds - 1))
+
+
+def seed_jackknife(
+    tables: dict[str, SeedTable], statistic: Callable[[dict[str, SeedTable]], dict]
+) -> dict:
+    """Jackknife standard errors of a study's numbers over whole seeds.
+
+    Parameters
+    ----------
+    tables, statistic
+        As for ``seed_bootstrap``.
+
+    Returns
+    -------
+    dict
+        The keys of ``statistic``'s dict: sqrt((n - 1) / n * sum_i (x_i -
+        mean x)^2), x_i the number with seed i left out (its impacts at every
+        angle of every lattice); NaN where a leave-one-out value is undefined
+        or there are fewer than two seeds.
+    """
+    seeds = len(next(iter(tables.values())).seeds)
+    if seeds < 2:
+        return {}
+    draws: dict = {}
+    for left_out in range(seeds):
+        index = np.delete(np.arange(seeds), left_out)
+        out = statistic({name: table.take(index) for name, table in tables.items()})
+        for key, value in out.items():
+            draws.setdefault(key, []).append(np.asarray(value, float))
+    sd = {}
+    for key, values in draws.items():
+        values = np.array(values)
+        deviations = values - values.mean(axis=0)
+        sd[key] = np.sqrt((seeds - 1) / seeds * np.sum(deviations**2, axis=0))
+    return sd
+
+
+def seed_errors(
+    tables: dict[str, SeedTable],
+    statistic: Callable[[dict[str, SeedTable]], dict],
+    resamples: int = 200,
+    rng_seed: int = RNG_SEED,
+) -> tuple[dict, dict]:
+    """The errors of a study's numbers by the method its seed count calls for
+    (``error_method``), and a description of them for the page: kind, method,
+    seeds, degrees of freedom and the factor to a 95 % interval."""
+    seeds = len(next(iter(tables.values())).seeds)
+    method = error_method(seeds)
+    if method == "bootstrap":
+        sd = seed_bootstrap(tables, statistic, resamples, rng_seed)
+        kind = f"sd over {resamples} seed-bootstrap resamples of {seeds} seeds"
+    else:
+        sd = seed_jackknife(tables, statistic)
+        kind = f"jackknife standard error over {seeds} seeds (each left out in turn)"
+    return sd, {
+        "kind": kind,
+        "method": method,
+        "seeds": seeds,
+        "dof": seeds - 1,
+        "interval_factor": interval_factor(seeds) if method == "jackknife" else 1.96,
+    }

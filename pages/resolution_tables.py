@@ -1,0 +1,180 @@
+"""The resolution page's tables (analysis.resolution's numbers in Markdown
+and CSV): the limits, the paper's claims per resolution, the differences
+between resolutions, the multilevel plan and each reading against N."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+from analysis.extrapolation import FIT_FROM, FORMS
+from analysis.resolution import FITTED, QUANTITIES, order
+
+from .text import markdown_table, pm
+
+FORM_NAMES = {"h": "Q0 + c h", "h2": "Q0 + c h^2", "power": "Q0 + c h^p"}
+STEP = "{:+.3f} +- {:.3f}"
+
+
+def steps_text(halvings: dict | None) -> str:
+    if not halvings:
+        return "-"
+    before, last = STEP.format(*halvings["before"]), STEP.format(*halvings["last"])
+    return f"{before}, then {last} (to {halvings['finest']:,})"
+
+
+def limit_text(found: dict) -> str:
+    """A quantity's verdict in the limit, in words."""
+    status = found["status"]
+    if status == "limit":
+        if found["described_by"] == ["constant"]:
+            return f"{found['value']:.3f} at every level"
+        return (
+            f"{found['value']:.3f} +- {found['stat']:.3f} +- {found['systematic']:.3f} form "
+            f"({found['band'][0]:.3f} to {found['band'][1]:.3f})"
+        )
+    if status == "not converged":
+        return f"not converged at N = {found['halvings']['finest']:,}"
+    if status == "no form":
+        return "undecided: no form describes the levels"
+    return "too few levels from 800 points"
+
+
+def form_text(fit: dict | None) -> str:
+    if not fit:
+        return "-"
+    text = f"{fit['limit']:.3f} +- {fit['limit_sd']:.3f}"
+    if fit["form"] == "power":
+        text += f" (p {fit['p']:.2f}" + (", on its bound)" if fit["pinned"] else ")")
+    return text + f", p-value {fit['p_value']:.2f}"
+
+
+def limits_table(limits: dict) -> str:
+    header = ["reading", "lattice", "quantity", "N -> infinity", "800 points above it"]
+    header.append("last two steps")
+    names = [k for k, _ in QUANTITIES]
+    body = []
+    for (reading, lattice, q), found in sorted(
+        limits.items(), key=lambda kv: (order(kv[0][:2]), names.index(kv[0][2]))
+    ):
+        shift = pm(found["shift_800"], found["shift_800_sd"]) if "shift_800" in found else "-"
+        body.append([reading, lattice, q, limit_text(found), shift, steps_text(found["halvings"])])
+    return markdown_table(header, body)
+
+
+def write_limits_csv(limits: dict, path: Path) -> None:
+    """Every form's fit of every quantity (limits.csv beside the figures)."""
+    columns = ["reading", "lattice", "quantity", "status", "levels", "form", "Q0", "Q0_sd"]
+    columns += ["c", "c_sd", "p", "p_sd", "chi2_per_dof", "dof", "p_value", "describes"]
+    with Path(path).open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(columns)
+        for (reading, lattice, q), found in sorted(limits.items()):
+            for form in FORMS:
+                fit = found["forms"].get(form)
+                if not fit:
+                    continue
+                writer.writerow(
+                    [reading, lattice, q, found["status"], " ".join(map(str, found["levels"]))]
+                    + [form, *(f"{fit[k]:.5g}" for k in ("limit", "limit_sd", "c", "c_sd"))]
+                    + [f"{fit[k]:.4g}" for k in ("p", "p_sd", "chi2")]
+                    + [fit["dof"], f"{fit['p_value']:.3g}", fit["describes"]]
+                )
+
+
+def claims_markdown(table: list[dict]) -> str:
+    """One reading's claims against N and in the limit."""
+    ns = sorted({n for row in table for n in row["cells"] if n >= FIT_FROM})
+    header = ["claim", *(f"{n:,}" for n in ns), "N -> infinity"]
+    body = []
+    for row in table:
+        cells = [row["claim"]]
+        for n in ns:
+            cell = row["cells"].get(n)
+            cells.append(f"{cell['verdict']} ({pm(cell['value'], cell['error'])})" if cell else "-")
+        limit = row["limit"]
+        cells.append(
+            f"{limit['verdict']} ({pm(limit['value'], limit['error'])})"
+            if limit["value"] is not None
+            else limit["verdict"]
+        )
+        body.append(cells)
+    return markdown_table(header, body)
+
+
+def differences_table(multilevel: dict) -> str:
+    """Per reading, lattice and N: sd of the per-seed differences against the
+    sd of Q(N), per group."""
+    groups = ("e_normal", "e_grazing", "beta_normal", "beta_grazing")
+    header = ["reading", "lattice", "N/2 -> N", "seeds", *groups]
+    body = []
+    for (reading, lattice), found in sorted(multilevel.items(), key=lambda kv: order(kv[0])):
+        by_n = {g: {d["n"]: d for d in found["differences"][g]} for g in groups}
+        for n in sorted(by_n["e_normal"]):
+            if n < 1600:
+                continue
+            cells = [reading, lattice, f"{n // 2:,} -> {n:,}", str(by_n["e_normal"][n]["seeds"])]
+            for g in groups:
+                d = by_n[g].get(n)
+                cells.append(f"{d['sd_difference']:.3f} / {d['sd_level']:.3f}" if d else "-")
+            body.append(cells)
+    return markdown_table(header, body)
+
+
+def plans_table(multilevel: dict) -> str:
+    header = ["reading", "lattice", "quantity +- target", "levels", "seeds per level"]
+    header += ["cost (800-point seeds)", "the finest alone: seeds, cost"]
+    body = []
+    for (reading, lattice), found in sorted(multilevel.items(), key=lambda kv: order(kv[0])):
+        for q, plan in found["plans"].items():
+            body.append(
+                [
+                    reading,
+                    lattice,
+                    f"{q} +- {plan['target']:g}",
+                    ", ".join(f"{n:,}" for n in plan["levels"]),
+                    ", ".join(map(str, plan["seeds"])),
+                    f"{plan['cost']:,.0f}",
+                    f"{plan['finest_alone_seeds']}, {plan['finest_alone_cost']:,.0f}",
+                ]
+            )
+    return markdown_table(header, body)
+
+
+def level_rows(
+    summary: dict, reading: str, lattice: str, start: int = 0
+) -> tuple[list[str], list[list[str]]]:
+    """One reading's levels from ``start`` points: seeds and errors, impacts,
+    failures, impacts over the drift limit and the quantities."""
+    header = ["N", "seeds (errors)", "impacts"]
+    header += [q for q, _ in QUANTITIES] + ["Walton chi2/dof (measured, paper's)"]
+    body = []
+    for (li, la, n), s in sorted(summary.items()):
+        if (li, la) != (reading, lattice) or n < start:
+            continue
+        method = s.get("errors", {}).get("method", "-")
+        cells = [f"{n:,}" + (" (left out)" if s["excluded"] else ""), f"{s['seeds']} ({method})"]
+        cells.append(f"{s['impacts']} ({s['failed']}; {s['drifted']})")
+        for q, _ in QUANTITIES:
+            value = s["values"].get(q)
+            text = pm(*value) if value else "-"
+            if q in FITTED and value:
+                text += f" +- {s['systematic'][q]:.3f} sys"
+            cells.append(text)
+        chi2 = s.get("chi2")
+        cells.append(f"{chi2['measured']:.1f}, {chi2['paper']:.1f}" if chi2 else "-")
+        body.append(cells)
+    return header, body
+
+
+def write_levels_csv(summary: dict, path: Path) -> None:
+    """Every level's table row (levels.csv beside the figures)."""
+    with Path(path).open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        first = True
+        for reading, lattice in sorted({k[:2] for k in summary}, key=order):
+            header, body = level_rows(summary, reading, lattice)
+            if first:
+                writer.writerow(["reading", "lattice", *header])
+                first = False
+            writer.writerows([reading, lattice, *row] for row in body)
