@@ -79,6 +79,7 @@ ROUGHNESS_LENGTH = 0.048
 # The continuous surface's correlation length: 0.2 R, whose roughness a rough
 # contact resolves near 25,600 points (docs/model.md).
 PROFILE_LENGTH = 0.2
+PAPER_SLOPE_LENGTH = 0.06
 LIMITS = {
     "continuum": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "spacing"},
     "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
@@ -94,6 +95,13 @@ LIMITS = {
         "contact_scaling": "physical",
     },
     "smooth": {"roughness": 0.0, "contact_scaling": "physical"},
+    # the paper's slope (0.5, the mean of its disk's 0.61 and its wall's 0.39
+    # at 800 points: bench/surface_slopes.py) as a continuous profile
+    "paper-slope": {
+        "roughness_length": PAPER_SLOPE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+    },
 }
 # What the disk hits in the symmetric references (analysis/references.py):
 # a second disk, its own image, that image held, a wall built like a disk's
