@@ -61,6 +61,14 @@ MIN_SAMPLES = 4
 PER_POINT_UP_TO = 3200
 # The triangular disk as far as this, the random one as far as the study goes.
 TRIANGULAR_UP_TO = 6400
+# Readings whose seeds are coupled across the resolutions (one surface per
+# seed: builder/profile.py): their seeds fall as N^-0.75 beyond
+# FULL_SAMPLES_UP_TO, the multilevel allocation sqrt(V / C) for a cost per
+# impact growing as N^1.5 and a variance of the differences that does not
+# grow; the smooth baseline at SMOOTH_SAMPLES seeds up to SMOOTH_UP_TO.
+COUPLED = ("profile", "smooth", "paper-slope")
+SMOOTH_SAMPLES = 4
+SMOOTH_UP_TO = 6400
 
 
 def label(choice: dict) -> str:
@@ -80,12 +88,25 @@ def samples_at(n_disk: int, samples: int) -> int:
     return max(MIN_SAMPLES, round(samples * FULL_SAMPLES_UP_TO / n_disk))
 
 
+def coupled_samples_at(n_disk: int, samples: int) -> int:
+    """Seeds at ``n_disk`` points for a coupled reading (COUPLED)."""
+    if n_disk <= FULL_SAMPLES_UP_TO:
+        return samples
+    return max(MIN_SAMPLES, round(samples * (FULL_SAMPLES_UP_TO / n_disk) ** 0.75))
+
+
 def plan(choice: dict, study):
     """The combination's study as run, or None to skip it: seeds by cost; the
     per-point readings on the random disk up to PER_POINT_UP_TO; the
     triangular disk up to TRIANGULAR_UP_TO."""
     n_disk = choice["n_disk"]
     lattices = tuple(study.lattices)
+    if choice["limit"] == "smooth":
+        if n_disk > SMOOTH_UP_TO:
+            return None
+        return replace(study, samples=min(study.samples, SMOOTH_SAMPLES))
+    if choice["limit"] in COUPLED:
+        return replace(study, samples=coupled_samples_at(n_disk, study.samples))
     if choice["limit"] != "continuum":
         if n_disk > PER_POINT_UP_TO:
             return None

@@ -61,7 +61,7 @@ def build_scene(spec: SceneSpec) -> Scene:
 
     ka_disk, disk_material = spring_constant(spec.lattice, disk.spacing * R, spec.k2_over_k1)
     ka_wall, ka_reference, wall_material = wall_spring_constant(spec)
-    cutoff = wall.spacing * R
+    cutoff = spec.contact_cutoff * R
     gamma = np.radians(spec.gamma_deg)
     speed = spec.vn * speed_unit(spec, disk.spacing * R, ka_disk)
     if speed >= 1.0:

@@ -19,6 +19,7 @@ from ground.errors import BuildError, InputError
 
 from .geometry import Polyline, inside_polygon
 from .network import triangulate_body, unique_edges
+from .profile import Profile
 from .sample_cache import cached_draw
 
 # Roles of the points of a body. A FIXED point is held in place and is not part
@@ -226,6 +227,7 @@ def make_disk(
     surface_row: str = "even",
     regular_surface: str = "band",
     roughness_length: float = 0.0,
+    profiles: tuple[Profile, Profile] | None = None,
 ) -> Body:
     """A disk of radius 1 centred at the origin.
 
@@ -234,7 +236,10 @@ def make_disk(
     Gaussian roughness of standard deviation ``roughness`` (and, with
     ``roughness_direction`` "both", along the circle by another), independent
     from point to point or, with ``roughness_length`` > 0, a random profile of
-    that correlation length along the circle (``correlated``). A regular
+    that correlation length along the circle (``correlated``), or, with
+    ``profiles`` (the radial and the tangential), the seed's own continuous
+    profiles of the angle (``profile``: the same surface at every
+    ``n_points``). A regular
     disk with ``regular_surface`` "lattice" has no separate row: its surface
     is the lattice's own outermost points (``lattice_surface_disk``).
 
@@ -262,9 +267,13 @@ def make_disk(
         radial = roughness * rng.standard_normal(len(angle))
     else:
         angle = 2.0 * np.pi * np.arange(n_surface) / n_surface
+    if profiles is not None:  # the noise above is still drawn: the interior stays the seed's
+        radial = roughness * profiles[0](angle)
     surface_points = (1.0 + radial)[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=1)
     if roughness_direction == "both":
         shift = correlated(rng.standard_normal(len(angle)), arc, roughness_length)
+        if profiles is not None:
+            shift = profiles[1](angle)
         surface_points = around_the_circle(surface_points, roughness * shift)
     n_surface = len(surface_points)
     interior = keep_clear(candidates, surface_points, CLEARANCE * spacing)
@@ -403,6 +412,7 @@ def random_rectangle(
     roughness: float = 0.0,
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
+    profiles: tuple[Profile, Profile] | None = None,
 ):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
@@ -412,9 +422,11 @@ def random_rectangle(
     of the sides). With ``roughness_length`` > 0 both are random profiles of
     that correlation length along the row (``correlated``: the row's inner
     points taken as periodic, which correlates its two ends, held 8 R apart
-    at the wall's sides). Returns the points, the outline in counter-clockwise order,
-    and the indices of the top, right, left and bottom rows (sides without the
-    top corners, bottom without its corners).
+    at the wall's sides), or with ``profiles`` (heights, then shifts) the
+    seed's continuous profiles of x (``profile``). Returns the points, the
+    outline in counter-clockwise order, and the indices of the top, right,
+    left and bottom rows (sides without the top corners, bottom without its
+    corners).
     """
     half = width / 2.0
     n_top = int(round(width / spacing))
@@ -424,6 +436,8 @@ def random_rectangle(
     step = top_x[1] - top_x[0]
     # corners stay on the sides
     top_y[1:-1] = roughness * correlated(rng.standard_normal(n_top - 1), step, roughness_length)
+    if profiles is not None:  # the noise above is still drawn: the interior stays the seed's
+        top_y[1:-1] = roughness * profiles[0](top_x[1:-1])
     top = np.stack([top_x, top_y], axis=1)
     side_y = np.linspace(0.0, -height, n_side + 1)[1:]  # below the top corners
     right = np.stack([np.full(n_side, half), side_y], axis=1)
@@ -450,6 +464,8 @@ def random_rectangle(
     candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
     if roughness_direction == "both":  # drawn after the interior, which a seed keeps
         shift = correlated(rng.standard_normal(n_top - 1), step, roughness_length)
+        if profiles is not None:
+            shift = profiles[1](top_x[1:-1])
         inner = top_x[1:-1] + roughness * shift
         edge = half - 0.1 * spacing
         order = np.argsort(inner, kind="stable")
@@ -468,6 +484,7 @@ def make_wall(
     fixed: str = "sides",
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
+    profiles: tuple[Profile, Profile] | None = None,
 ) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
@@ -478,7 +495,7 @@ def make_wall(
     """
     spacing = triangular_spacing(n_points / (width * height))
     points, outline, rows = random_rectangle(
-        rng, spacing, width, height, roughness, roughness_direction, roughness_length
+        rng, spacing, width, height, roughness, roughness_direction, roughness_length, profiles
     )
     top = rows["top"]
     role = np.full(len(points), INTERIOR)

@@ -8,7 +8,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import bodies
+from . import bodies, profile
 from .bodies import Body
 from .scene import SceneSpec
 
@@ -25,6 +25,7 @@ def sample_disk(spec: SceneSpec) -> Body:
         spec.surface_row,
         spec.regular_surface,
         spec.roughness_length,
+        spec.roughness_profile,
     )
 
 
@@ -55,6 +56,7 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
             spec.wall_fixed,
             spec.roughness_direction,
             spec.roughness_length,
+            spec.roughness_profile,
         ),
     )
 
@@ -68,11 +70,18 @@ def sample_seeds(seed: int) -> tuple[np.random.SeedSequence, ...]:
 
 @lru_cache(maxsize=8)
 def _disk(lattice, seed, n_disk, roughness, k2_over_k1, *readings) -> Body:
+    *readings, length, kind = readings
     rng = np.random.default_rng(sample_seeds(seed)[0])
-    return bodies.make_disk(rng, lattice, n_disk, roughness, k2_over_k1, *readings)
+    profiles = profile.disk_profiles(seed, length) if kind == "continuous" else None
+    return bodies.make_disk(
+        rng, lattice, n_disk, roughness, k2_over_k1, *readings, length, profiles
+    )
 
 
 @lru_cache(maxsize=4)
-def _wall(seed, n_wall, width, height, roughness, wall_fixed, *readings) -> Body:
+def _wall(seed, n_wall, width, height, roughness, wall_fixed, direction, length, kind) -> Body:
     rng = np.random.default_rng(sample_seeds(seed)[1])
-    return bodies.make_wall(rng, n_wall, width, height, roughness, wall_fixed, *readings)
+    profiles = profile.wall_profiles(seed, length, width) if kind == "continuous" else None
+    return bodies.make_wall(
+        rng, n_wall, width, height, roughness, wall_fixed, direction, length, profiles
+    )

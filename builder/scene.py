@@ -82,9 +82,19 @@ ROUGHNESS_LENGTH = Range(0.005, 1.0, unit="R, or 0: each point on its own")
 # number of points; "spacing", a times the spacing and the contact's energy
 # per length of surface held at the 800-point disk's, which makes the contact
 # harder as the disk is refined, towards a hard contact in the limit.
-CONTACT_SCALINGS = ("spacing", "fixed")
+# "physical": every length of the contact fixed in R (a, and the cutoff at the
+# 800-point scene's, PAPER_CUTOFF) and its pressure in proportion to the
+# elastic modulus (``contact_energy``), so that only the sampling changes with N.
+CONTACT_SCALINGS = ("spacing", "fixed", "physical")
+# The rough surface: "sampled" at the row's points, a new draw at every
+# resolution (``bodies.correlated``); "continuous", one profile per seed, the
+# same function of arc length at every resolution (builder/profile.py).
+ROUGHNESS_PROFILES = ("sampled", "continuous")
 # The disk at which every setting that follows the resolution is the paper's.
 REFERENCE_N_DISK = 800
+# The contact's cutoff with contact_scaling "physical": the paper's, the wall
+# spacing of its 1,600 points over 8 R x 2 R (32 decay lengths at a R = 300).
+PAPER_CUTOFF = bodies.triangular_spacing(2 * REFERENCE_N_DISK / (8.0 * 2.0))
 # Where the default run resolves the contact (bench/stability.py,
 # docs/benchmarks/stability_speeds.md, three seeds per point): every normal speed up
 # to 0.4 c at speeds along the wall up to 0.8 c; at 0.5 c and 1.0 c along the
@@ -205,10 +215,17 @@ SCENE_OPTIONS = (
            "(each point drawn on its own, the paper) or a length (docs/model.md, 'The model as "
            "the resolution grows')", ROUGHNESS_LENGTH, (0.0, 0), hide_words=True,
            made_by="changed"),
+    Option("roughness_profile", "sampled", "sampled: the roughness drawn at the surface's "
+           "points, anew at every n_disk; continuous: one profile of correlation length "
+           "roughness_length per seed, the same surface at every n_disk (docs/model.md, 'The "
+           "model as the resolution grows')", words=ROUGHNESS_PROFILES, applies="wall",
+           made_by="changed"),
     Option("contact_scaling", "spacing", "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
            "times sqrt(800 / n_disk), the contact's energy per length of surface held; fixed: a "
-           "and V0 as at 800 points, the paper's (docs/model.md, 'The model as the resolution "
-           "grows')", words=CONTACT_SCALINGS, made_by="changed"),
+           "and V0 as at 800 points, the paper's; physical: a and the cutoff as at 800 points, "
+           "the pressure over the modulus held (docs/model.md, 'The model as the resolution "
+           "grows')",
+           words=CONTACT_SCALINGS, made_by="changed"),
     Option("k2_over_k1", 3.0 / 7.0, "square lattice only: diagonal over nearest spring "
            "constant", K2_OVER_K1, study=False),
     Option("kb_over_ka", 1e-3, "bond over spring constant", KB_OVER_KA, study=False, cli=False),
@@ -264,7 +281,14 @@ class SceneSpec:
                 f"at the disk's density over a {self.wall_width:g} R wide wall); it must have "
                 f"{N_WALL.describe()}"
             )
-        require_contact_resolved(self.contact_decay * self.radius, self.wall_spacing, self)
+        if self.roughness_profile == "continuous" and self.roughness_length == 0.0:
+            raise InputError(
+                "roughness_profile continuous needs a correlation length: give roughness_length "
+                f"in {ROUGHNESS_LENGTH.describe()}"
+            )
+        if self.target == "disk" and self.contact_scaling == "physical":
+            raise InputError("contact_scaling physical applies to target wall")
+        require_contact_resolved(self.contact_decay * self.radius, self.contact_cutoff, self)
         if self.regular_surface == "lattice":
             if self.lattice == "random":
                 raise InputError(
@@ -318,6 +342,12 @@ class SceneSpec:
         reference = REFERENCE_N_DISK * 2 / (8.0 * 2.0)  # the paper's wall's points per R^2
         wall = math.sqrt(reference * self.wall_width * self.wall_height / self.wall_points)
         return min(self.resolution_scale, wall)
+
+    @property
+    def contact_cutoff(self) -> float:
+        """The contact's cutoff in R: the wall's spacing, or the paper's at
+        every resolution with contact_scaling "physical"."""
+        return PAPER_CUTOFF if self.contact_scaling == "physical" else self.wall_spacing
 
     @property
     def wall_spacing(self) -> float:
@@ -412,7 +442,14 @@ def contact_energy(spec: SceneSpec, disk_points: int) -> float:
 
     With ``contact_scaling`` "spacing" V0 is that times the resolution scale,
     sqrt(800 / n_disk): the contact's energy per length of surface, V0 over
-    the spacing, stays the 800-point disk's."""
+    the spacing, stays the 800-point disk's. With "physical" V0 is the
+    800-point disk's over the resolution scale: the contact's pressure, V0 a
+    over the spacing, then grows as n_disk, as the elastic modulus does in
+    units of m c^2 (a body of n_disk points of mass m), and keeps its ratio
+    to it."""
+    if spec.contact_scaling == "physical":
+        mass = float(disk_points) * spec.resolution_scale**2 if spec.contact_mass == "disk" else 1.0
+        return spec.contact_a / 2.0 * mass / spec.resolution_scale
     mass = float(disk_points) if spec.contact_mass == "disk" else 1.0
     energy = spec.contact_a / 2.0 * mass
     return energy * spec.resolution_scale if spec.contact_scaling == "spacing" else energy

@@ -76,10 +76,32 @@ MODELS = {name: {**FIRST_READING, **change} for name, change in MODEL_CHANGES.it
 # contact's scaling; "continuum" changes neither with the spacing, the other
 # two take the paper's per-point reading of one of them.
 ROUGHNESS_LENGTH = 0.048
+# The continuous surface's correlation length: 0.2 R, whose roughness a rough
+# contact resolves near 25,600 points (docs/model.md).
+PROFILE_LENGTH = 0.2
+PAPER_SLOPE_LENGTH = 0.06
 LIMITS = {
     "continuum": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "spacing"},
     "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
     "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
+    # Every length physical (issue 46): one continuous surface per seed, the
+    # same at every resolution (builder/profile.py), of correlation length
+    # PROFILE_LENGTH, and the contact's lengths fixed in R; "smooth" is its
+    # baseline without roughness, which separates the elasticity and the
+    # contact from the roughness.
+    "profile": {
+        "roughness_length": PROFILE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+    },
+    "smooth": {"roughness": 0.0, "contact_scaling": "physical"},
+    # the paper's slope (0.5, the mean of its disk's 0.61 and its wall's 0.39
+    # at 800 points: bench/surface_slopes.py) as a continuous profile
+    "paper-slope": {
+        "roughness_length": PAPER_SLOPE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+    },
 }
 # What the disk hits in the symmetric references (analysis/references.py):
 # a second disk, its own image, that image held, a wall built like a disk's
