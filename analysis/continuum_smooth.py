@@ -25,9 +25,9 @@ gap ``ln(a_c V0 / f) / a_c``. The disk's lowest point is then at the gap
 P(x); ``M x'' = P(x)`` is integrated from the cutoff, where the model's
 contact window opens, back to it. Nothing here dissipates: e = 1.
 
-Two held-sides corrections are not in the half-plane: the 8 R x 2 R wall is a
-beam clamped at its ends (``beam_compliance``, static Timoshenko), and
-neither body is quasi-static (``beam_period``, the disk's lowest modes).
+Not in the half-plane: the 8 R x 2 R wall held at its sides is a clamped
+beam (``beam_compliance``, static Timoshenko), and neither body is
+quasi-static (their lowest modes: ``analysis.modal_smooth``).
 """
 
 from __future__ import annotations
@@ -270,15 +270,6 @@ def beam_compliance(e_wall: float, nu_wall: float, span: float = 8.0, depth: flo
     inertia = depth**3 / 12.0
     shear = e_wall / (2.0 * (1.0 + nu_wall))
     return span**3 / (192.0 * e_wall * inertia) + span / (4.0 * TIMOSHENKO_KAPPA * shear * depth)
-
-
-def beam_period(wave_speed: float, span: float = 8.0, depth: float = 2.0) -> float:
-    """Lowest bending period of a clamped-clamped Euler beam, 2 pi / omega.
-
-    omega = 4.730^2 / L^2 sqrt(E I / (rho A)) with E / rho = ``wave_speed``^2;
-    Timoshenko's shear and rotary inertia lengthen it at span/depth 4.
-    """
-    return float(2.0 * np.pi / (4.7300407**2 / span**2 * wave_speed * depth / np.sqrt(12.0)))
 
 
 def impact_from_scene(scene: dict, **overrides: float) -> Impact:
