@@ -21,6 +21,8 @@ from dataclasses import replace
 
 import numpy as np
 
+from builder.study_names import LIMITS
+
 from . import extrapolation, levels
 from .estimates import study_estimates
 from .measures import GRAZING_ANGLES
@@ -265,9 +267,12 @@ def limits(
     return out
 
 
-def order(key: tuple[str, str]) -> tuple[int, str]:
-    limits = ("continuum", "point-roughness", "fixed-contact")
-    return (limits.index(key[0]) if key[0] in limits else len(limits), key[1])
+def order(key: tuple[str, str]) -> tuple[int, str, str]:
+    """(reading, lattice) in the order the readings are declared
+    (builder.study_names.LIMITS), then by name: never a set's order, which
+    changes with the interpreter's string hashing."""
+    limits = tuple(LIMITS)
+    return (limits.index(key[0]) if key[0] in limits else len(limits), key[0], key[1])
 
 
 def means_by_angle(rows: list[dict], limit: str, lattice: str) -> dict[int, list[tuple]]:

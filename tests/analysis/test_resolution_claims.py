@@ -81,3 +81,32 @@ def test_in_the_limit_a_failing_fit_adds_the_finest_levels_systematic():
     table = claims_table(summary, {("r", "random", "mu_paper"): found}, "r")
     mu = next(c for c in table if c["claim"] == MU[0])
     assert mu["limit"]["error"] == pytest.approx(math.hypot(0.01, 0.02, 0.03))
+
+
+def test_readings_come_in_their_declared_order_whatever_the_hashing():
+    """Pages list readings by analysis.resolution.order: the declared order
+    of builder.study_names.LIMITS, then by name, never a set's order (which
+    moves with PYTHONHASHSEED: two runs of one page differed)."""
+    import subprocess
+    import sys
+
+    from analysis.resolution import order
+    from builder.study_names import LIMITS
+
+    keys = [(name, "random") for name in LIMITS] + [("unknown-b", "x"), ("unknown-a", "x")]
+    assert [k[0] for k in sorted(keys, key=order)] == [*LIMITS, "unknown-a", "unknown-b"]
+    script = (
+        "from analysis.resolution import order; from builder.study_names import LIMITS; "
+        "print(sorted({(n, l) for n in LIMITS for l in ('random', 'triangular')}, key=order))"
+    )
+    runs = {
+        subprocess.run(
+            [sys.executable, "-c", script],
+            env={"PYTHONHASHSEED": str(seed), "PATH": ""},
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
+        for seed in (1, 2, 3, 4)
+    }
+    assert len(runs) == 1
