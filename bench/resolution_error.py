@@ -31,6 +31,7 @@ from pathlib import Path
 
 from analysis import extrapolation, levels, resolution
 from bench.common import bench_parser, markdown_table, page_folder, refuse, write_report
+from ground.checks import InPath
 from ground.errors import InputError
 from ground.paths import ROOT
 
@@ -41,18 +42,20 @@ QUANTITIES = ("e_normal", "mu")
 
 def parser():
     p = bench_parser(__file__, __doc__, out="resolution_error.md and .png")
-    p.add_argument("--rows", type=Path, default=TABLES / "rows.csv", help="the impacts' rows")
     p.add_argument(
-        "--timings", type=Path, default=TABLES / "timings.csv", help="each impact's seconds"
+        "--rows", type=InPath("file"), default=TABLES / "rows.csv", help="the impacts' rows"
+    )
+    p.add_argument(
+        "--timings",
+        type=InPath("file"),
+        default=TABLES / "timings.csv",
+        help="each impact's seconds",
     )
     return p
 
 
 def read(rows_csv: Path, timings_csv: Path) -> list[dict]:
     """The reading's rows, each with its ``wall_seconds`` and ``atom_steps``."""
-    for option, path in (("--rows", rows_csv), ("--timings", timings_csv)):
-        if not path.is_file():
-            raise InputError(f"{option} {path} is not a file")
     key = ("reading", "study_lattice", "seed", "gamma_deg")
     with open(timings_csv) as f:
         seconds = {tuple(r[k] for k in key): float(r["wall_seconds"]) for r in csv.DictReader(f)}
