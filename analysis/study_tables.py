@@ -10,6 +10,7 @@ import math
 from pathlib import Path
 
 from ground.errors import InputError
+from ground.gate import gate
 
 from . import speed
 from .failures import impact_state, state_of
@@ -107,6 +108,7 @@ def tidy_tables(tables: Path) -> None:
     state, the numbers of means.csv, fits.json and speed.json to
     ``TABLE_DIGITS``. Tables already so are left byte for byte."""
     info, rows, failed = read_tables(tables)
+    gate(tables)  # the one gate of every write (ground.gate)
     write_csv(rows, tables / "impacts.csv", table_columns(rows))
     write_csv(failed, tables / "failed.csv", FAILED_COLUMNS)
     (tables / "study.json").write_text(public_record(info))

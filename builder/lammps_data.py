@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.gate import make_folder
 from ground.paths import BUILD
 
 from .contact_table import ensure_table, table_name
@@ -208,7 +209,7 @@ def write_bodies(scene: Scene, path: Path | str, springs: str = DEFAULT_SPRINGS)
         ``path``.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    make_folder(path.parent)
     partial = path.with_name(f".{path.name}.{os.getpid()}")
     partial.write_text(data_file_text(scene, springs, placed=False))
     partial.replace(path)
@@ -244,8 +245,7 @@ def write_scene(
     pathlib.Path
         ``folder``.
     """
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(folder)  # ground.gate: the one gate of every write
     info = dict(scene.info, springs=springs)
     ensure_table(TABLES, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
     if bodies is None:

@@ -19,6 +19,7 @@ from numbers import Integral, Real
 from pathlib import Path
 
 from .errors import InputError
+from .gate import expanded
 from .paths import protected_problem
 
 # LAMMPS splits a command at whitespace, takes "#" for a comment, "$" for a
@@ -136,12 +137,11 @@ def require_out_folder(name: str, path: Path | str) -> Path:
     """``path`` as a Path if a run can write there (not inside the project's
     record or code: ground.paths) and LAMMPS can name it, else InputError
     naming the option."""
-    problem = (
-        protected_problem(path) or word_problem(str(Path(path).absolute())) or folder_problem(path)
-    )
+    path = expanded(path)
+    problem = protected_problem(path) or word_problem(str(path.absolute())) or folder_problem(path)
     if problem:
         raise InputError(f"{name}: {path} {problem}")
-    return Path(path)
+    return path
 
 
 @dataclass(frozen=True)
@@ -153,14 +153,15 @@ class OutFolder:
     def __call__(self, text: str) -> Path:
         if not text:
             raise argparse.ArgumentTypeError("must be a folder's path, got ''")
+        path = expanded(text)  # the check and the write: the same folder
         problem = (
-            protected_problem(text)
-            or (word_problem(str(Path(text).absolute())) if self.lammps else None)
-            or folder_problem(text)
+            protected_problem(path)
+            or (word_problem(str(path.absolute())) if self.lammps else None)
+            or folder_problem(path)
         )
         if problem:
             raise argparse.ArgumentTypeError(f"{text} {problem}")
-        return Path(text)
+        return path
 
     __name__ = "folder"
 
@@ -174,7 +175,7 @@ class InPath:
     needs: tuple[str, ...] = ()
 
     def __call__(self, text: str) -> Path:
-        path = Path(text)
+        path = expanded(text)
         if self.kind == "file" and not path.is_file():
             raise argparse.ArgumentTypeError(f"must be an existing file, got {text!r}")
         if self.kind == "folder":

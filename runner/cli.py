@@ -18,7 +18,8 @@ from builder.scene import (
     speed_warning,
 )
 from ground.checks import InPath, OutFolder, require_out_folder
-from ground.errors import BuildError, InputError
+from ground.errors import BuildError, InputError, os_error_line
+from ground.gate import environment_paths, gate
 from ground.launch import LammpsError
 
 from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
@@ -98,6 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     if isinstance(getattr(args, "preset", None), StudyFile):  # the file, and its study's name
         args.described, args.preset = args.preset, args.preset.study.name
     try:
+        environment_paths()  # IMPACT_RUNS, IMPACT_POISSON_CACHE: through the one gate
         if args.command == "impact":
             spec = spec_from_args(args)
             out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
@@ -107,6 +109,7 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
             results = [run_impact(spec, out, options_from_args(args))]
         elif args.command == "run":
+            gate(args.scene, "scene")  # it writes its results into the folder
             results = [run_scene(args.scene, options_from_args(args))]
         elif args.command == "page":
             return remake_page(args)
@@ -126,6 +129,9 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 128 + stop.signum
+    except OSError as error:  # a full disk, a read-only folder, a dangling link
+        print(f"python -m runner: error: {os_error_line(error)}", file=sys.stderr)
+        return 1
     for result in results:
         warn_if_inaccurate(result)
     print(format_table(results))

@@ -6,9 +6,10 @@ workers there are.
 
 from __future__ import annotations
 
-import shutil
 import time
 from dataclasses import replace
+
+from ground.gate import remove
 
 from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
 from .folders import state
@@ -136,12 +137,12 @@ def run_study(
                     counts.update(drive(study, jobs, todo, own, spec.size()))
     except ClusterUnavailable:
         if created:  # nothing ran: the study's name stays free
-            shutil.rmtree(study.folder, ignore_errors=True)
+            remove(study.folder)
         raise
     finally:
         # the workers' scratch (runner.study.SampleBodies), also what workers
         # that crashed left: no task of this study runs any more
-        shutil.rmtree(study.folder / BODIES_FOLDER, ignore_errors=True)
+        remove(study.folder / BODIES_FOLDER)
     return {**study.summary(jobs), **counts}
 
 

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.gate import remove
+
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
@@ -91,4 +93,4 @@ def prune(folder: Path) -> None:
     """Keep only the small files of a finished impact."""
     for path in folder.iterdir():
         if path.name not in KEEP and path.name not in SET_ASIDE:
-            path.unlink()
+            remove(path)

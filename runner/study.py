@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 from dataclasses import asdict, field
 from pathlib import Path
 
@@ -23,6 +22,7 @@ from builder.outputs import NAME_MAX
 from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, wall_spring_constant
 from ground.checks import require_out_folder, word_problem
 from ground.errors import InputError
+from ground.gate import gate, make_folder, remove, write_text
 from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROOT too)
 
 from .folders import (
@@ -255,7 +255,7 @@ class Study:
     def prepare(self, retry_failed: bool = False) -> list[dict]:
         """Check the study, record it in its folder, and return its jobs."""
         self.validate()
-        self.folder.mkdir(parents=True, exist_ok=True)
+        make_folder(self.folder, "--name")
         # common_wall: every lattice meets the same wall (builder.scene.wall_spring_constant),
         # which the results page reads; study.json files from before lack it
         record = {**asdict(self), "common_wall": True}
@@ -264,8 +264,10 @@ class Study:
             old = json.loads(path.read_text())
             if "wall_clock" in old and Study.from_json(path).grid() == self.grid():
                 record["wall_clock"] = old["wall_clock"]
-        path.write_text(json.dumps(record, indent=1))
+        write_text(path, json.dumps(record, indent=1))
         jobs = self.jobs()
+        for job in jobs:  # a link in the study's folder may not lead a write elsewhere
+            gate(job["folder"], f"study {self.name}")
         if retry_failed:
             for job in jobs:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
@@ -281,10 +283,12 @@ class Study:
         its sample's bodies, written once per process (``SAMPLE_BODIES``);
         on several ranks, the impact's own placed scene."""
         folder = Path(job["folder"])
-        folder.mkdir(parents=True, exist_ok=True)
+        if folder.is_symlink():  # its own folder, never a link's target emptied
+            remove(folder)
+        make_folder(folder)
         for path in folder.iterdir():
             if path.name not in (*SET_ASIDE, STARTED):
-                shutil.rmtree(path) if path.is_dir() else path.unlink()
+                remove(path)
         scene = build_scene(self.spec(job))
         if self.options.nprocs > 1:  # the placed scene, as runner impact --np runs it: on
             # several ranks the bodies' restart has another box, so another decomposition

@@ -27,6 +27,7 @@ from pathlib import Path
 
 from analysis.failures import impact_state
 from analysis.result import write_json_atomically
+from ground.gate import make_folder
 from ground.launch import lammps_error
 
 from .folders import STARTED, prune
@@ -48,7 +49,7 @@ def fail(job: dict, message: str) -> dict:
     failed, or stuck (its disk stayed on the wall, a physical outcome:
     analysis.failures.impact_state), and say so."""
     folder = Path(job["folder"])
-    folder.mkdir(parents=True, exist_ok=True)
+    make_folder(folder)
     state = impact_state(message)
     write_json_atomically({**job, "state": state, "error": message}, folder / "failed.json")
     (folder / STARTED).unlink(missing_ok=True)
@@ -92,7 +93,7 @@ def impact_task(study: Study, job: dict) -> dict:
         # marked before building: writing the sample's restart runs LAMMPS too,
         # and an error there ends this process as one in the run does
         started = {"attempts": attempts + 1, "host": socket.gethostname(), "pid": os.getpid()}
-        folder.mkdir(parents=True, exist_ok=True)
+        make_folder(folder)
         write_json_atomically(started, folder / STARTED)
         study.build(job)  # afresh: what an earlier start left goes, but the mark
         built = time.perf_counter()
