@@ -15,6 +15,7 @@ from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ende
 from .folders import state
 from .sample_bodies import BODIES_FOLDER
 from .study import Study
+from .study_lock import made_by_lock, study_lock
 from .tasks import WORKER_PHASES, group_task
 
 PROGRESS_EVERY = 10.0  # seconds between progress lines
@@ -117,7 +118,13 @@ def run_study(
     spec = replace(cluster or ClusterSpec(workers=workers), ranks=study.options.nprocs)
     if client is None:
         spec.check_ranks()
-    created = not study.folder.exists()
+    created = not study.folder.exists() or made_by_lock(study.folder)
+    with study_lock(study.folder):  # one run per study folder (its command's, if it holds it)
+        return run_locked(study, spec, retry_failed, client, created)
+
+
+def run_locked(study: Study, spec: ClusterSpec, retry_failed: bool, client, created: bool) -> dict:
+    """``run_study`` with the study folder's lock held."""
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
     told = (

@@ -12,6 +12,7 @@ from ground.errors import InputError
 from .cluster_args import SLURM_ONLY, add_cluster_arguments, cluster_from_args, option
 from .provenance import record_wall_clock
 from .studies import study_file, study_names
+from .study_lock import study_lock
 from .study import (
     ANGLES,
     COT_GAMMA,
@@ -110,6 +111,12 @@ def add_study_arguments(study) -> None:
     )
     add_cluster_arguments(study)
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
+    study.add_argument(
+        "--wait",
+        action="store_true",
+        help="if another run of the same study folder is under way, wait for it to end "
+        "(default: refuse, naming its process)",
+    )
     scene = study.add_argument_group("the scene and the run (default: the study's)")
     scene.add_argument(
         "--vn", type=GRID["vn"], default=None, help=f"normal approach speed, {VN.describe()}"
@@ -281,18 +288,19 @@ def run_one_study(args, described: StudyFile | None, study: Study | None = None)
         return 0
     cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
     study = study or study_from_args(args, described.study, file=described.path)
-    if not args.report_only:
-        start = time.monotonic()
-        counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
-        record_wall_clock(study, time.monotonic() - start, counts)
-    summary = report(
-        study,
-        page=places.page,
-        preset=args.preset,
-        tables=places.tables,
-        readings=places.readings,
-        sections=sections,
-    )
+    with study_lock(study.folder, wait=getattr(args, "wait", False)):  # one run per folder
+        if not args.report_only:
+            start = time.monotonic()
+            counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
+            record_wall_clock(study, time.monotonic() - start, counts)
+        summary = report(
+            study,
+            page=places.page,
+            preset=args.preset,
+            tables=places.tables,
+            readings=places.readings,
+            sections=sections,
+        )
     if places.tabulated:
         remake_tabulating_page(described, {**places.readings, places.doc_name: places.tables})
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())
