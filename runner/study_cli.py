@@ -12,7 +12,6 @@ from ground.errors import InputError
 from .cluster_args import SLURM_ONLY, add_cluster_arguments, cluster_from_args, option
 from .provenance import record_wall_clock
 from .studies import study_file, study_names
-from .study_lock import study_lock
 from .study import (
     ANGLES,
     COT_GAMMA,
@@ -23,6 +22,7 @@ from .study import (
 )
 from .study_args import STUDY_RUN, STUDY_SCENE, study_from_args
 from .study_file import READINGS_KINDS, StudyFile, axis_studies
+from .study_lock import study_lock
 from .study_outputs import (
     combine_tables,
     docs_page,
