@@ -28,6 +28,7 @@ from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROO
 from .folders import (
     SET_ASIDE,
     STARTED,
+    check_made_as_asked,
     failed_state,
     set_aside_if_other_wall,
     set_aside_if_unreadable,
@@ -200,7 +201,9 @@ class Study:
         """The study a study.json records; fields it lacks (older studies) take
         their defaults, keys that are not fields (wall_clock) are skipped."""
         try:
-            info = json.loads(path.read_text())
+            info = json.loads(path.read_text(encoding="utf-8"))
+            if not isinstance(info, dict):
+                raise TypeError(f"a JSON {type(info).__name__}, not an object")
             fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
             fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
             fields["cot_gamma"] = tuple(fields.get("cot_gamma", ()))
@@ -210,8 +213,11 @@ class Study:
             return cls(
                 **fields, options=RunOptions(**{k: v for k, v in options.items() if k in known})
             )
-        except (OSError, ValueError, TypeError) as error:
-            raise InputError(f"{path}: not a study's record ({error})") from None
+        except (OSError, ValueError, TypeError, AttributeError) as error:
+            raise InputError(
+                f"{path}: not a study's record ({error}); remove it: the next run records the "
+                "study again and checks every finished impact against it"
+            ) from None
 
     def jobs(self) -> list[dict]:
         """Every impact, grouped by sample: (lattice, seed), then speed and angle.
@@ -264,7 +270,6 @@ class Study:
             old = json.loads(path.read_text())
             if "wall_clock" in old and Study.from_json(path).grid() == self.grid():
                 record["wall_clock"] = old["wall_clock"]
-        write_text(path, json.dumps(record, indent=1))
         jobs = self.jobs()
         for job in jobs:  # a link in the study's folder may not lead a write elsewhere
             gate(job["folder"], f"study {self.name}")
@@ -275,7 +280,19 @@ class Study:
             set_aside_if_unreadable(job)
             if self.target == "wall":
                 set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
+        self.check_done(jobs)  # before study.json says the study is this one
+        write_text(path, json.dumps(record, indent=1))
         return jobs
+
+    def check_done(self, jobs: list[dict]) -> None:
+        """Refuse finished impacts that another study made (runner.folders:
+        every option of their scene and run against the study's), whatever
+        study.json says; unreadable records are set aside and run again."""
+        for job in jobs:
+            if (Path(job["folder"]) / "result.json").exists():
+                spec = self.spec(job)
+                options = self.options.for_scene(spec).as_dict()
+                check_made_as_asked(job, asdict(spec), options)
 
     def build(self, job: dict) -> Path:
         """The job's scene, written afresh into its folder (an impact killed

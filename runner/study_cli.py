@@ -289,7 +289,9 @@ def run_one_study(args, described: StudyFile | None, study: Study | None = None)
     cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
     study = study or study_from_args(args, described.study, file=described.path)
     with study_lock(study.folder, wait=getattr(args, "wait", False)):  # one run per folder
-        if not args.report_only:
+        if args.report_only:  # a page of what the study asks, never of another's rows
+            study.check_done(study.jobs())
+        else:
             start = time.monotonic()
             counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
             record_wall_clock(study, time.monotonic() - start, counts)
