@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import tempfile
 from dataclasses import dataclass
 from numbers import Integral, Real
@@ -84,7 +85,7 @@ class Range:
         """``value`` if allowed, else InputError naming ``name`` and the range."""
         if not self.contains(value):
             raise InputError(f"{name} must be {self.describe()}, got {value!r}")
-        return int(value) if self.integer else float(value)
+        return int(value) if self.integer else plain_zero(float(value))
 
     def __call__(self, text: str):
         """argparse's type: the text as a number, or an error with the range."""
@@ -94,11 +95,23 @@ class Range:
             raise argparse.ArgumentTypeError(f"must be {self.describe()}, got {text!r}") from None
         if not self.contains(value):
             raise argparse.ArgumentTypeError(f"must be {self.describe()}, got {text}")
-        return value
+        return plain_zero(value)
 
     @property
     def __name__(self) -> str:  # argparse names a type by it in some messages
         return "integer" if self.integer else "number"
+
+
+def plain_zero(value):
+    """-0.0 as 0.0, anything else as it is: one rule for the command line and
+    the study files (a -0 folder name beside a 0 one would be two impacts)."""
+    if isinstance(value, float) and value == 0.0:
+        return 0.0
+    if isinstance(value, list):
+        return [plain_zero(v) for v in value]
+    if isinstance(value, dict):
+        return {k: plain_zero(v) for k, v in value.items()}
+    return value
 
 
 def word_problem(path: str) -> str | None:
@@ -108,6 +121,23 @@ def word_problem(path: str) -> str | None:
     if bad := sorted(set(path) & LAMMPS_UNSAFE):
         return f"must not contain {' '.join(bad)} (LAMMPS's own syntax)"
     return None
+
+
+# What a name or path of runs may hold: LAMMPS (and other tools the runs
+# meet) fail on others ("Cannot open restart file" for non-ASCII, * or %).
+PORTABLE = re.compile(r"[A-Za-z0-9._+=,@:/~-]*")
+
+
+def portable_problem(text: str) -> str | None:
+    """Why ``text`` (a study's name, a file's stem, a runs' folder) is not
+    plain portable characters, or None."""
+    if PORTABLE.fullmatch(text):
+        return None
+    bad = "".join(sorted({c for c in text if not PORTABLE.fullmatch(c)}))
+    return (
+        f"must be plain portable characters (letters, digits and . _ - + = , @), not {bad!r}: "
+        "LAMMPS cannot open such files"
+    )
 
 
 def folder_problem(path: Path | str) -> str | None:

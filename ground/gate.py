@@ -80,6 +80,11 @@ def gate(path: Path | str, what: str = "") -> Path:
 def make_folder(path: Path | str, what: str = "") -> Path:
     """The folder at ``path``, made with its parents, through the gate."""
     folder = gate(path, what)
+    if folder.is_symlink() and not folder.exists():
+        raise InputError(
+            f"{what + ': ' if what else ''}{folder} is a link to {os.readlink(folder)}, which "
+            "does not exist: remove the link, or make the folder it names"
+        )
     folder.mkdir(parents=True, exist_ok=True)
     return folder
 
@@ -88,7 +93,11 @@ def write_text(path: Path | str, text: str, what: str = "") -> Path:
     """``text`` written to ``path`` through the gate (a link's target is
     checked where it leads)."""
     path = gate(path, what)
-    path.write_text(text)
+    try:
+        path.write_text(text)
+    except OSError as error:  # a full disk's error names no file: this one
+        error.filename = error.filename or str(path)
+        raise
     return path
 
 
@@ -116,3 +125,9 @@ def environment_paths(environ: os._Environ | dict | None = None) -> None:
         if not value or (name == "IMPACT_POISSON_CACHE" and value == "off"):
             continue
         gate(value, name)
+        if name == "IMPACT_RUNS":  # its path goes into every impact's LAMMPS deck
+            from .checks import portable_problem, word_problem
+
+            path = str(expanded(value).absolute())
+            if reason := word_problem(path) or portable_problem(path):
+                raise InputError(f"IMPACT_RUNS: {value} {reason}")

@@ -6,6 +6,7 @@ where its tables and page go runner/study_outputs.py's.
 
 from __future__ import annotations
 
+import os
 import sys
 
 from builder.cli import (
@@ -90,6 +91,19 @@ def parser() -> OneLineParser:
     return parser
 
 
+def check_cores(nprocs: int) -> None:
+    """Refuse more ranks than this machine's cores before anything is built
+    (mpirun would refuse them after, in a message of dashes), unless MPI is
+    told to oversubscribe or IMPACT_MPIRUN launches elsewhere."""
+    cores = os.cpu_count() or 1
+    told = os.environ.get("OMPI_MCA_rmaps_base_oversubscribe") or os.environ.get("IMPACT_MPIRUN")
+    if nprocs > cores and not told:
+        raise InputError(
+            f"--np must be at most this machine's {cores} cores, got {nprocs} "
+            "(OMPI_MCA_rmaps_base_oversubscribe=1 runs more ranks than cores, slowly)"
+        )
+
+
 def main(argv: list[str] | None = None) -> int:
     from analysis.text_table import format_table
 
@@ -105,12 +119,18 @@ def main(argv: list[str] | None = None) -> int:
             out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
             require_out_folder("--out", out)
             validate_spec(spec)
+            options = options_from_args(args)
+            if problem := options.scene_problem(spec):  # before anything is built
+                raise InputError(problem)
+            check_cores(options.nprocs)
             if warning := speed_warning(spec.vn, spec.gamma_deg):
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
-            results = [run_impact(spec, out, options_from_args(args))]
+            results = [run_impact(spec, out, options)]
         elif args.command == "run":
             gate(args.scene, "scene")  # it writes its results into the folder
-            results = [run_scene(args.scene, options_from_args(args))]
+            options = options_from_args(args)
+            check_cores(options.nprocs)
+            results = [run_scene(args.scene, options)]
         elif args.command == "page":
             return remake_page(args)
         elif args.command == "tilt":

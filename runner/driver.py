@@ -207,6 +207,8 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
             for outcome in outcomes:
                 if outcome["state"] == "settled":
                     continue
+                if outcome["state"] == "disk":  # a full disk, a read-only folder: stop here
+                    raise OSError(*outcome["error"])
                 progress.done += 1
                 if outcome["state"] in ("failed", "stuck"):
                     progress.failed += outcome["state"] == "failed"

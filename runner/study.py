@@ -20,7 +20,7 @@ from builder.lammps_data import write_scene
 from builder.materials import STUDY_LATTICES
 from builder.outputs import NAME_MAX
 from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, wall_spring_constant
-from ground.checks import require_out_folder, word_problem
+from ground.checks import portable_problem, require_out_folder, word_problem
 from ground.errors import InputError
 from ground.gate import gate, make_folder, remove, write_text
 from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROOT too)
@@ -47,6 +47,16 @@ IMPACTS_PER_WORKER_MINUTE = 505.0
 # What may differ between a study's study.json and a command that resumes it
 # with --extend: more samples, more lattices.
 EXTENDABLE = ("samples", "lattices")
+_cap = [MAX_IMPACTS]
+
+
+def impact_cap(impacts: int | None = None) -> int:
+    """The most impacts a command may run (a study, or every combination of a
+    study file's axes together): MAX_IMPACTS, or what --max-impacts allows
+    (``impacts``, set once by the command line)."""
+    if impacts is not None:
+        _cap[0] = impacts
+    return _cap[0]
 
 
 def name_problem(name: str) -> str | None:
@@ -62,7 +72,7 @@ def name_problem(name: str) -> str | None:
         return "must be one folder under runs/, without '/' or '..'"
     if len(name.encode()) > NAME_MAX:
         return f"must be a folder name of at most {NAME_MAX} bytes ({len(name.encode())} given)"
-    return word_problem(name)
+    return word_problem(name) or portable_problem(name)
 
 
 def study_angles(count: int) -> list[float]:
@@ -154,14 +164,15 @@ class Study:
                     f"{what} names an impact's folder twice ({', '.join(twice)}): "
                     "give distinct values"
                 )
-        size = self.samples * self.angles * len(self.lattices) * len(self.velocities())
-        if size > MAX_IMPACTS:
+        size = self.size()
+        if size > impact_cap():
             hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
             raise InputError(
-                f"samples x angles x lattices x speeds must be at most {MAX_IMPACTS} impacts, "
+                f"samples x angles x lattices x speeds must be at most {impact_cap()} impacts, "
                 f"got {self.samples} x {self.angles} x {len(self.lattices)} x "
                 f"{len(self.velocities())} = {size}, about "
-                f"{hours:,.0f} hours on 2 workers of this project's machine"
+                f"{hours:,.0f} hours on 2 workers of this project's machine "
+                "(--max-impacts allows more)"
             )
         regular = [x for x in self.lattices if LATTICES[x]["lattice"] != "random"]
         if self.regular_surface != SceneSpec.regular_surface and not regular:
@@ -177,7 +188,16 @@ class Study:
                 )
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
-            self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+            job = {"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}
+            self.spec(job).validate()
+            # the slowest speed at the largest angle: the longest run, the farthest start
+            slowest = self.spec({**job, "vn": min(self.velocities()), "gamma": max(self.gammas())})
+            if problem := self.options.scene_problem(slowest):
+                raise InputError(problem)
+
+    def size(self) -> int:
+        """How many impacts the study has."""
+        return self.samples * self.angles * len(self.lattices) * len(self.velocities())
 
     def velocities(self) -> list[float]:
         """The study's normal approach speeds, increasing."""

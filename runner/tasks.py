@@ -19,6 +19,7 @@ count of failures, decides what that means, from the impact's folder:
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import socket
@@ -42,6 +43,12 @@ MAX_ATTEMPTS = 3
 # scene (bodies, data file), LAMMPS (its instance, read_data, the run), the
 # rest (analysis, result files).
 WORKER_PHASES = ("build", "lammps", "rest")
+
+
+# Errors of the disk rather than of an impact: a full disk, a file size
+# limit, a read-only folder. An impact is not failed for them; the study
+# stops with one line naming the file (runner.cli).
+DISK_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EROFS, errno.EACCES, errno.EPERM)
 
 
 def fail(job: dict, message: str) -> dict:
@@ -98,6 +105,11 @@ def impact_task(study: Study, job: dict) -> dict:
         study.build(job)  # afresh: what an earlier start left goes, but the mark
         built = time.perf_counter()
         result = run_scene(folder, study.options)
+    except OSError as error:
+        if error.errno in DISK_ERRORS:  # the machine's, not the impact's: the study stops
+            (folder / STARTED).unlink(missing_ok=True)  # not an attempt of the impact's
+            return {**job, "state": "disk", "error": [error.errno, error.strerror, error.filename]}
+        return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))
     except Exception as error:  # a Python error, or LAMMPS's with exceptions built in
         return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))
     prune(folder)  # started.json with the rest
@@ -116,4 +128,9 @@ def impact_task(study: Study, job: dict) -> dict:
 
 def group_task(study: Study, jobs: list[dict]) -> list[dict]:
     """Settle every impact of a group, in order, in this worker."""
-    return [impact_task(study, job) for job in jobs]
+    outcomes = []
+    for job in jobs:
+        outcomes.append(impact_task(study, job))
+        if outcomes[-1]["state"] == "disk":  # the rest would meet the same disk
+            break
+    return outcomes
