@@ -146,6 +146,17 @@ def mpi_environment() -> dict[str, str]:
     return env
 
 
+def require_lmp(env: dict[str, str] | None = None) -> None:
+    """Refuse, in one line, a machine without lmp on the PATH lmp gets
+    (rather than a FileNotFoundError's traceback after the build)."""
+    env = env or mpi_environment()
+    if shutil.which("lmp", path=env.get("PATH")) is None:
+        raise LammpsError(
+            "lmp not found on PATH: install Debian's lammps (make setup), or run on one rank "
+            "with --route python"
+        )
+
+
 def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = DECK) -> float:
     """Run a deck with lmp; returns the wall time in seconds.
 
@@ -172,11 +183,7 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = 
         If lmp fails; the message is LAMMPS's ERROR line.
     """
     env = mpi_environment()
-    if shutil.which("lmp", path=env.get("PATH")) is None:  # not a FileNotFoundError's traceback
-        raise LammpsError(
-            "lmp not found on PATH: install Debian's lammps (make setup), or run on one rank "
-            "with --route python"
-        )
+    require_lmp(env)
     start = time.perf_counter()
     proc = subprocess.run(
         mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log, deck),

@@ -21,7 +21,7 @@ from builder.scene import (
 from ground.checks import InPath, OutFolder, require_out_folder
 from ground.errors import BuildError, InputError, os_error_line
 from ground.gate import environment_paths, gate
-from ground.launch import LammpsError
+from ground.launch import LammpsError, mpi_launcher, require_lmp
 
 from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
 from .stopping import Stopped, stop_on_signals
@@ -91,10 +91,15 @@ def parser() -> OneLineParser:
     return parser
 
 
-def check_cores(nprocs: int) -> None:
-    """Refuse more ranks than this machine's cores before anything is built
-    (mpirun would refuse them after, in a message of dashes), unless MPI is
-    told to oversubscribe or IMPACT_MPIRUN launches elsewhere."""
+def check_launch(options) -> None:
+    """Refuse, before anything is built, a run that cannot start: more ranks
+    than this machine's cores (mpirun would refuse them after, in a message
+    of dashes) unless MPI is told to oversubscribe or IMPACT_MPIRUN launches
+    elsewhere; no mpirun or IMPACT_MPIRUN's program; no lmp."""
+    nprocs = options.nprocs
+    if options.route == "lmp" or nprocs > 1:
+        mpi_launcher(nprocs)
+        require_lmp()
     cores = os.cpu_count() or 1
     told = os.environ.get("OMPI_MCA_rmaps_base_oversubscribe") or os.environ.get("IMPACT_MPIRUN")
     if nprocs > cores and not told:
@@ -122,14 +127,14 @@ def main(argv: list[str] | None = None) -> int:
             options = options_from_args(args)
             if problem := options.scene_problem(spec):  # before anything is built
                 raise InputError(problem)
-            check_cores(options.nprocs)
+            check_launch(options)
             if warning := speed_warning(spec.vn, spec.gamma_deg):
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
             results = [run_impact(spec, out, options)]
         elif args.command == "run":
             gate(args.scene, "scene")  # it writes its results into the folder
             options = options_from_args(args)
-            check_cores(options.nprocs)
+            check_launch(options)
             results = [run_scene(args.scene, options)]
         elif args.command == "page":
             return remake_page(args)

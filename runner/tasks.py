@@ -19,6 +19,7 @@ count of failures, decides what that means, from the impact's folder:
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import json
 import os
@@ -107,7 +108,8 @@ def impact_task(study: Study, job: dict) -> dict:
         result = run_scene(folder, study.options)
     except OSError as error:
         if error.errno in DISK_ERRORS:  # the machine's, not the impact's: the study stops
-            (folder / STARTED).unlink(missing_ok=True)  # not an attempt of the impact's
+            with contextlib.suppress(OSError):  # not an attempt of the impact's
+                (folder / STARTED).unlink(missing_ok=True)
             return {**job, "state": "disk", "error": [error.errno, error.strerror, error.filename]}
         return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))
     except Exception as error:  # a Python error, or LAMMPS's with exceptions built in
