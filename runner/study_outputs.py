@@ -124,6 +124,11 @@ def remake_page(args) -> int:
     (--all: every study's that has them)."""
     if args.all == (args.preset is not None):
         raise InputError("page: give a STUDY or --all, not both or neither")
+    if args.out is not None and (args.out / "study.json").exists():  # a study's own folder
+        raise InputError(
+            f"--out: {args.out} holds a study (study.json), whose page and tables this would "
+            "replace; give a folder of its own"
+        )
     if not args.all:
         print(f"wrote {shown(remake_one_page(args.described, args.out))}")
         return 0

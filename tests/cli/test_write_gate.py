@@ -152,3 +152,11 @@ def test_a_folder_is_removed_as_a_link_never_through_it(tmp_path):
     assert not link.exists() and (target / "a.txt").read_text() == "a"
     with pytest.raises(InputError, match="inside docs/"):
         gate(tmp_path / ".." / os.path.relpath(DOCS / "model.md", tmp_path.parent))
+
+
+def test_page_out_onto_a_study_folder_is_refused(tmp_path):
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "study.json").write_text("{}")
+    refused(command("page", "paper", "--out", str(other)), "holds a study (study.json)")
+    assert sorted(p.name for p in other.iterdir()) == ["study.json"]
