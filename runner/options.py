@@ -52,9 +52,11 @@ class RunOptions:
 
     def scene_problem(self, spec) -> str | None:
         """Why these options cannot run ``spec`` (a builder.scene.SceneSpec)
-        to an outcome, or None: a tmax shorter than one step, or than the
-        disk's approach to the wall and one contact (contact_time_guess R/c
-        at its radius R); c-speeds only (speed_unit spring has its own unit)."""
+        at all, or None: dt auto outside dt's range (a radius far from 1), a
+        tmax shorter than one step or than the disk's approach to the wall
+        (c-speeds only: speed_unit spring has its own unit), a start beyond
+        the wall's end. A disk still on the wall at tmax is an outcome, not
+        refused here."""
         step = self.for_scene(spec).step
         if self.dt == AUTO and not DT.contains(step):
             return (
@@ -82,14 +84,13 @@ class RunOptions:
             )
         if spec.speed_unit != "c":
             return None
-        needed = gap / spec.vn + spec.contact_time_guess * spec.radius
-        if self.tmax < needed:
+        # the disk starts start_gap wall spacings beyond the contact's range
+        approach = spec.start_gap * spec.wall_spacing * spec.radius / spec.vn
+        if self.tmax < approach:
             return (
-                f"tmax {self.tmax:g} R/c is too short for the disk to reach the wall and leave "
-                f"it: at vn {spec.vn:g} and radius {spec.radius:g} it needs at least "
-                f"{needed:.3g} (a gap of {gap:.3g} to the wall, a contact of about "
-                f"{spec.contact_time_guess * spec.radius:g}); give a larger tmax or vn"
-                + (", or a radius nearer 1" if spec.radius != 1.0 else "")
+                f"tmax {self.tmax:g} R/c is too short for the disk to reach the wall: at vn "
+                f"{spec.vn:g} it takes {approach:.3g} to cross the gap it starts with; give a "
+                "larger tmax or vn"
             )
         return None
 

@@ -116,7 +116,7 @@ def add_study_arguments(study) -> None:
     study.add_argument(
         "--max-impacts",
         type=Range(1, 100_000_000, integer=True),
-        default=MAX_IMPACTS,
+        default=None,
         help=f"the most impacts the command may run, every combination of a study file's "
         f"axes together (default: {MAX_IMPACTS:,})",
     )
@@ -212,7 +212,7 @@ def run_study_command(args) -> int:
     first runs."""
     from .readings_study import run_readings_study
 
-    impact_cap(getattr(args, "max_impacts", MAX_IMPACTS))
+    impact_cap(getattr(args, "max_impacts", None) or MAX_IMPACTS)
 
     described = args.described
     readings_kind = described.kind in READINGS_KINDS

@@ -84,8 +84,8 @@ CASES = [
     ),
     study_file(
         "study tmax too short for its slowest speed",
-        SMALL + "[run]\ntmax = 5.0\n",
-        "f.toml: tmax 5 R/c is too short",
+        SMALL + "[run]\ntmax = 0.1\n",
+        "f.toml: tmax 0.1 R/c is too short for the disk to reach the wall",
     ),
     Case(
         "--from-tables over a garbage impacts.csv",
