@@ -88,5 +88,9 @@ def study_lock(folder: Path, wait: bool = False) -> Iterator[None]:
         finally:
             del _held[key]
     finally:
+        # a run refused before any work leaves no folder: the study's name stays free
+        if key in _made and [p.name for p in folder.iterdir()] == [LOCK]:
+            (folder / LOCK).unlink()
+            folder.rmdir()
         _made.discard(key)
         os.close(fd)  # releases the lock
