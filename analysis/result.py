@@ -10,6 +10,7 @@ from pathlib import Path
 
 from builder.run_options import MAX_DRIFT
 from builder.scene import MODEL_READINGS
+from ground.gate import gate
 
 from .binary import binary_energy_split, binary_normals, binary_rebound, momentum_change
 from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
@@ -238,9 +239,14 @@ def _finite(value) -> bool:
 
 def write_json_atomically(data: dict, path: Path | str) -> None:
     """Write JSON so that a reader sees either nothing or the whole file."""
-    path = Path(path)
+    path = gate(path)  # the one gate of every write (ground.gate)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    with os.fdopen(fd, "w") as handle:
-        json.dump(data, handle, indent=1, sort_keys=True)
-        handle.write("\n")
-    os.replace(tmp, path)
+    try:
+        with os.fdopen(fd, "w") as handle:
+            json.dump(data, handle, indent=1, sort_keys=True)
+            handle.write("\n")
+        os.replace(tmp, path)
+    except OSError as error:  # a full disk: no half file left, and the file named
+        Path(tmp).unlink(missing_ok=True)
+        error.filename = error.filename or str(path)
+        raise

@@ -10,6 +10,7 @@ import math
 from pathlib import Path
 
 from ground.errors import InputError
+from ground.gate import gate
 
 from . import speed
 from .failures import impact_state, state_of
@@ -81,8 +82,12 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
             return list(csv.DictReader(handle))
 
     try:
-        info = json.loads((tables / "study.json").read_text())
+        info = json.loads((tables / "study.json").read_text(encoding="utf-8"))
+        if not isinstance(info, dict):
+            raise ValueError(f"study.json is a JSON {type(info).__name__}, not a study's record")
         rows, failed = read("impacts.csv"), read("failed.csv")
+        if not rows and not failed:  # a garbage or empty table: no page of nan
+            raise ValueError("impacts.csv and failed.csv hold no impact")
         rows = [with_model_readings(row) for row in rows]
         for failure in failed:  # failed.csv from before its state column
             failure["state"] = state_of(failure)
@@ -95,7 +100,7 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
             bad = [k for k in finite if not math.isfinite(float(row.get(k) or "nan"))]
             if bad:
                 raise ValueError(f"line {line}: {', '.join(bad)} not a finite number")
-    except (OSError, ValueError, KeyError) as error:
+    except (OSError, ValueError, KeyError, TypeError, AttributeError, csv.Error) as error:
         raise InputError(f"--from-tables: {tables} holds no study's tables ({error})") from None
     return info, rows, failed
 
@@ -107,6 +112,7 @@ def tidy_tables(tables: Path) -> None:
     state, the numbers of means.csv, fits.json and speed.json to
     ``TABLE_DIGITS``. Tables already so are left byte for byte."""
     info, rows, failed = read_tables(tables)
+    gate(tables)  # the one gate of every write (ground.gate)
     write_csv(rows, tables / "impacts.csv", table_columns(rows))
     write_csv(failed, tables / "failed.csv", FAILED_COLUMNS)
     (tables / "study.json").write_text(public_record(info))

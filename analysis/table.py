@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from builder.scene import MODEL_READINGS
+from ground.gate import gate
 
 from .result import MAX_DRIFT, UnreadableResult, read_result
 
@@ -211,7 +212,7 @@ def row(result: dict, study_lattice: str) -> dict:
 
 
 def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
-    path = Path(path)
+    path = gate(path)  # the one gate of every write (ground.gate)
     tmp = path.with_suffix(path.suffix + ".tmp")
     with tmp.open("w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(columns), extrasaction="ignore")

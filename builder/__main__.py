@@ -6,7 +6,8 @@ import sys
 from pathlib import Path
 
 from ground.checks import OutFolder, Range
-from ground.errors import BuildError, InputError
+from ground.errors import BuildError, InputError, os_error_line
+from ground.gate import environment_paths, make_folder, write_text
 
 from .assembly import build_scene
 from .cli import OneLineParser, add_scene_arguments, spec_from_args, validate_spec
@@ -76,6 +77,7 @@ def parser() -> OneLineParser:
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
+        environment_paths()
         if args.command == "scene":
             spec = spec_from_args(args)
             validate_spec(spec)  # every value checked before anything is built or written
@@ -83,12 +85,15 @@ def main(argv: list[str] | None = None) -> int:
             print(f"wrote {folder}/scene.data, scene.lmp, scene.json")
         else:
             path = Path(args.out) / table_name(args.a, args.v0)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(table_text(args.a, args.v0, points=args.points))
+            make_folder(path.parent, "--out")
+            write_text(path, table_text(args.a, args.v0, points=args.points))
             print(f"wrote {path}")
     except (InputError, BuildError) as error:
         print(f"python -m builder: error: {error}", file=sys.stderr)
         return 2
+    except OSError as error:  # a full disk, a read-only folder
+        print(f"python -m builder: error: {os_error_line(error)}", file=sys.stderr)
+        return 1
     return 0
 
 

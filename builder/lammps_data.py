@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ground.gate import make_folder, write_text
 from ground.paths import BUILD
 
 from .contact_table import ensure_table, table_name
@@ -211,9 +212,9 @@ def write_bodies(scene: Scene, path: Path | str, springs: str = DEFAULT_SPRINGS)
         ``path``.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    make_folder(path.parent)
     partial = path.with_name(f".{path.name}.{os.getpid()}")
-    partial.write_text(data_file_text(scene, springs, placed=False))
+    write_text(partial, data_file_text(scene, springs, placed=False))
     partial.replace(path)
     return path
 
@@ -247,14 +248,13 @@ def write_scene(
     pathlib.Path
         ``folder``.
     """
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(folder)  # ground.gate: the one gate of every write
     info = dict(scene.info, springs=springs)
     ensure_table(TABLES, info["contact"]["a"], info["contact"]["V0"], scene.spec.radius)
     if bodies is None:
-        (folder / "scene.data").write_text(data_file_text(scene, springs))
-    (folder / "scene.lmp").write_text(settings_text(scene, springs, bodies, restart))
-    (folder / "scene.json").write_text(json.dumps(info, indent=1, sort_keys=True) + "\n")
+        write_text(folder / "scene.data", data_file_text(scene, springs))
+    write_text(folder / "scene.lmp", settings_text(scene, springs, bodies, restart))
+    write_text(folder / "scene.json", json.dumps(info, indent=1, sort_keys=True) + "\n")
     return folder
 
 

@@ -4,9 +4,10 @@
   the committed record or the code (ground.paths.protected_problem).
 - A study file names its page by a plain name (``page_problem``), never a
   path; it writes docs/<page>.md, docs/<page>/ and docs/figures/<page>/ only.
-- A page in docs/ belongs to one study: a study file in studies/ owns its page
-  and the readings its page tabulates; a study file of one's own may make a
-  new page only where no committed page has that name (``page_owner``).
+- A page in docs/ belongs to exactly one committed study file of studies/:
+  it owns its page and the readings its page tabulates; any other study file
+  (of one's own, or placed in studies/) may make a new page only where no
+  committed page has that name (``require_own_page``).
 
 ground.checks.OutFolder and require_out_folder apply the first rule to every
 ``--out``; runner applies the others.
@@ -16,7 +17,6 @@ from __future__ import annotations
 
 import re
 import subprocess
-from collections.abc import Mapping
 from pathlib import Path
 
 from ground.errors import InputError
@@ -60,36 +60,35 @@ def committed(*paths: Path) -> list[str]:
     return listed
 
 
-def page_owner(page: str, pages: Mapping[str, str], readings: Mapping[str, tuple]) -> str | None:
-    """The study in studies/ whose page (or one of whose readings) is ``page``, or None.
+def require_own_page(
+    where: str,
+    study: str,
+    page: str,
+    owners: list[str],
+    naming: list[str],
+    committed_file: bool,
+    made_by: str | None = None,
+) -> None:
+    """Refuse a page in docs/ that is not the study's own.
+
+    A page belongs to exactly one committed study file of studies/ (its page,
+    or a reading its page tabulates). A committed file may write its own
+    page; any other file (of one's own, or placed in studies/) only a new
+    page: not one a committed file owns, nor one committed in docs/, nor one
+    another study file names or another study's run made.
 
     Parameters
     ----------
-    page : str
-        A page's name (docs/<page>.md, docs/<page>/).
-    pages : mapping of str to str
-        Each study file's page by study (runner.studies.built_in_pages).
-    readings : mapping of str to tuple of str
-        The readings each study's page tabulates (runner.studies.built_in_pages).
-    """
-    for study, own in pages.items():
-        if page == own:
-            return study
-    for study, names in readings.items():
-        if page in names:
-            return study
-    return None
-
-
-def require_new_page(
-    where: str, study: str, page: str, pages: Mapping[str, str], readings: Mapping[str, tuple]
-) -> None:
-    """Refuse a page for a study file of one's own where another study has it.
-
-    A study file outside studies/ may make a new page only: not one that a
-    study of studies/ owns, nor one committed in docs/ (a page, its tables or
-    its figures). Its own page, made by an earlier run and not committed, it
-    may make again.
+    where, study, page : str
+        The file (for the message), its study's name, and the page.
+    owners : list of str
+        The committed study files (by name) whose page or readings is ``page``.
+    naming : list of str
+        Every other study file of studies/ (committed or not) naming ``page``.
+    committed_file : bool
+        Whether the file is a committed file of studies/.
+    made_by : str, optional
+        The study whose tables docs/<page>/ holds from an earlier run, if any.
 
     Raises
     ------
@@ -98,14 +97,30 @@ def require_new_page(
     """
     if problem := page_problem(page, tables=True):
         raise InputError(f"{where}: page {problem}, got {page!r}")
-    owner = page_owner(page, pages, readings)
-    if owner is not None and owner != study:
+    if len(owners) > 1:
         raise InputError(
-            f"{where}: page {page!r} is the {owner} study's (studies/{owner}.toml); "
+            f"{where}: page {page!r} is named by {len(owners)} study files "
+            f"({', '.join(f'studies/{o}.toml' for o in owners)}); a page has one owner"
+        )
+    if committed_file and owners == [study]:
+        return
+    if owners:
+        raise InputError(
+            f"{where}: page {page!r} is the {owners[0]} study's (studies/{owners[0]}.toml); "
             "give the file a page of its own"
         )
-    if owner is None and committed(DOCS / f"{page}.md", DOCS / page, DOCS / "figures" / page):
+    if naming:
+        raise InputError(
+            f"{where}: page {page!r} is named by studies/{naming[0]}.toml too; "
+            "give the file a page of its own"
+        )
+    if committed(DOCS / f"{page}.md", DOCS / page, DOCS / "figures" / page):
         raise InputError(
             f"{where}: page {page!r} is committed in docs/ and not this study's; "
+            "give the file a page of its own"
+        )
+    if made_by is not None and made_by != study:
+        raise InputError(
+            f"{where}: page {page!r} was made by the {made_by} study (docs/{page}/study.json); "
             "give the file a page of its own"
         )

@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 import scipy
 
+from ground.gate import gate
 from ground.paths import BUILD
 
 DEFAULT_FOLDER = BUILD / "poisson"
@@ -36,7 +37,9 @@ def cache_folder() -> Path | None:
     setting = os.environ.get("IMPACT_POISSON_CACHE", "")
     if setting == "off":
         return None
-    return Path(setting) if setting else DEFAULT_FOLDER
+    # through the one gate of every write (ground.gate): ~ expanded, and
+    # never into the project's record or code
+    return gate(setting, "IMPACT_POISSON_CACHE") if setting else DEFAULT_FOLDER
 
 
 def sample_key(rng: np.random.Generator, arguments: dict) -> str:

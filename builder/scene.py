@@ -65,7 +65,7 @@ FIRST_READING = {name: choices[0] for name, choices in MODEL_READINGS.items()}
 # (builder/cli.py) alike.
 ANGLE = Range(0.0, 90.0, low_open=True, high_open=True, unit="degrees from the wall's normal")
 SEED = Range(0, 2**32 - 1, integer=True)
-RADIUS = Range(1e-3, 1000.0, unit="R, the unit of length")
+RADIUS = Range(0.1, 10.0, unit="R, the unit of length")  # where the scaled step works (issue 44)
 N_DISK = Range(50, 100_000, integer=True)
 N_WALL = Range(50, 400_000, integer=True)
 ROUGHNESS = Range(0.0, 0.1, unit="R")

@@ -13,12 +13,14 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import tempfile
 from dataclasses import dataclass
 from numbers import Integral, Real
 from pathlib import Path
 
 from .errors import InputError
+from .gate import expanded
 from .paths import protected_problem
 
 # LAMMPS splits a command at whitespace, takes "#" for a comment, "$" for a
@@ -83,7 +85,7 @@ class Range:
         """``value`` if allowed, else InputError naming ``name`` and the range."""
         if not self.contains(value):
             raise InputError(f"{name} must be {self.describe()}, got {value!r}")
-        return int(value) if self.integer else float(value)
+        return int(value) if self.integer else plain_zero(float(value))
 
     def __call__(self, text: str):
         """argparse's type: the text as a number, or an error with the range."""
@@ -93,11 +95,23 @@ class Range:
             raise argparse.ArgumentTypeError(f"must be {self.describe()}, got {text!r}") from None
         if not self.contains(value):
             raise argparse.ArgumentTypeError(f"must be {self.describe()}, got {text}")
-        return value
+        return plain_zero(value)
 
     @property
     def __name__(self) -> str:  # argparse names a type by it in some messages
         return "integer" if self.integer else "number"
+
+
+def plain_zero(value):
+    """-0.0 as 0.0, anything else as it is: one rule for the command line and
+    the study files (a -0 folder name beside a 0 one would be two impacts)."""
+    if isinstance(value, float) and value == 0.0:
+        return 0.0
+    if isinstance(value, list):
+        return [plain_zero(v) for v in value]
+    if isinstance(value, dict):
+        return {k: plain_zero(v) for k, v in value.items()}
+    return value
 
 
 def word_problem(path: str) -> str | None:
@@ -107,6 +121,23 @@ def word_problem(path: str) -> str | None:
     if bad := sorted(set(path) & LAMMPS_UNSAFE):
         return f"must not contain {' '.join(bad)} (LAMMPS's own syntax)"
     return None
+
+
+# What a name or path of runs may hold: LAMMPS (and other tools the runs
+# meet) fail on others ("Cannot open restart file" for non-ASCII, * or %).
+PORTABLE = re.compile(r"[A-Za-z0-9._+=,@:/~-]*")
+
+
+def portable_problem(text: str) -> str | None:
+    """Why ``text`` (a study's name, a file's stem, a runs' folder) is not
+    plain portable characters, or None."""
+    if PORTABLE.fullmatch(text):
+        return None
+    bad = "".join(sorted({c for c in text if not PORTABLE.fullmatch(c)}))
+    return (
+        f"must be plain portable characters (letters, digits and . _ - + = , @), not {bad!r}: "
+        "LAMMPS cannot open such files"
+    )
 
 
 def folder_problem(path: Path | str) -> str | None:
@@ -136,12 +167,11 @@ def require_out_folder(name: str, path: Path | str) -> Path:
     """``path`` as a Path if a run can write there (not inside the project's
     record or code: ground.paths) and LAMMPS can name it, else InputError
     naming the option."""
-    problem = (
-        protected_problem(path) or word_problem(str(Path(path).absolute())) or folder_problem(path)
-    )
+    path = expanded(path)
+    problem = protected_problem(path) or word_problem(str(path.absolute())) or folder_problem(path)
     if problem:
         raise InputError(f"{name}: {path} {problem}")
-    return Path(path)
+    return path
 
 
 @dataclass(frozen=True)
@@ -153,14 +183,15 @@ class OutFolder:
     def __call__(self, text: str) -> Path:
         if not text:
             raise argparse.ArgumentTypeError("must be a folder's path, got ''")
+        path = expanded(text)  # the check and the write: the same folder
         problem = (
-            protected_problem(text)
-            or (word_problem(str(Path(text).absolute())) if self.lammps else None)
-            or folder_problem(text)
+            protected_problem(path)
+            or (word_problem(str(path.absolute())) if self.lammps else None)
+            or folder_problem(path)
         )
         if problem:
             raise argparse.ArgumentTypeError(f"{text} {problem}")
-        return Path(text)
+        return path
 
     __name__ = "folder"
 
@@ -174,7 +205,7 @@ class InPath:
     needs: tuple[str, ...] = ()
 
     def __call__(self, text: str) -> Path:
-        path = Path(text)
+        path = expanded(text)
         if self.kind == "file" and not path.is_file():
             raise argparse.ArgumentTypeError(f"must be an existing file, got {text!r}")
         if self.kind == "folder":

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 from collections.abc import Iterable
 
 
@@ -17,3 +18,29 @@ def require_choice(name: str, value: str, choices: Iterable[str]) -> None:
     choices = list(choices)
     if value not in choices:
         raise InputError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
+
+
+# What to do about an operating system's error, by its errno.
+_REMEDIES = {
+    errno.ENOSPC: "the disk is full: free space or give another folder",
+    errno.EDQUOT: "the disk quota is reached: free space or give another folder",
+    errno.EFBIG: "the file size limit is reached (ulimit -f): raise it",
+    errno.EACCES: "it is not writable: make it writable or give another folder",
+    errno.EPERM: "it is not writable: make it writable or give another folder",
+    errno.EROFS: "its file system is read-only: give another folder",
+    errno.ENOENT: "it does not exist (a dangling link?): remove it or give another path",
+    errno.ELOOP: "it is a loop of links: remove them",
+    errno.ENOTDIR: "a part of its path is a file, not a folder",
+    errno.EISDIR: "it is a folder, not a file",
+}
+
+
+def os_error_line(error: OSError) -> str:
+    """An operating system's error as one line: the file, what went wrong,
+    what to do."""
+    where = error.filename or "a file"
+    if error.filename2:
+        where = f"{where} -> {error.filename2}"
+    remedy = _REMEDIES.get(error.errno, "")
+    told = error.strerror or str(error)
+    return f"{where}: {told}{'; ' + remedy if remedy else ''}"

@@ -79,7 +79,13 @@ def mpi_launcher(nprocs: int) -> list[str]:
     if nprocs == 1:
         return []
     if os.environ.get("IMPACT_MPIRUN"):
-        return os.environ["IMPACT_MPIRUN"].split() + ["-n", str(nprocs)]
+        words = os.environ["IMPACT_MPIRUN"].split()
+        if shutil.which(words[0]) is None:
+            raise LammpsError(
+                f"IMPACT_MPIRUN: {words[0]} is not a program on PATH; unset IMPACT_MPIRUN "
+                "(mpirun) or name one, such as srun --mpi=pmix"
+            )
+        return words + ["-n", str(nprocs)]
     if shutil.which("mpirun") is None:
         raise LammpsError(
             "mpirun not found: install openmpi-bin (make setup) to run on several ranks"
@@ -140,6 +146,17 @@ def mpi_environment() -> dict[str, str]:
     return env
 
 
+def require_lmp(env: dict[str, str] | None = None) -> None:
+    """Refuse, in one line, a machine without lmp on the PATH lmp gets
+    (rather than a FileNotFoundError's traceback after the build)."""
+    env = env or mpi_environment()
+    if shutil.which("lmp", path=env.get("PATH")) is None:
+        raise LammpsError(
+            "lmp not found on PATH: install Debian's lammps (make setup), or run on one rank "
+            "with --route python"
+        )
+
+
 def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = DECK) -> float:
     """Run a deck with lmp; returns the wall time in seconds.
 
@@ -165,13 +182,15 @@ def run_lmp(variables: dict[str, str], log: Path, nprocs: int = 1, deck: Path = 
     LammpsError
         If lmp fails; the message is LAMMPS's ERROR line.
     """
+    env = mpi_environment()
+    require_lmp(env)
     start = time.perf_counter()
     proc = subprocess.run(
         mpi_launcher(nprocs) + ["lmp"] + command_line(variables, log, deck),
         cwd=ROOT,
         capture_output=True,
         text=True,
-        env=mpi_environment(),
+        env=env,
         preexec_fn=ends_with_parent(),  # it calls prctl alone: no lock a thread could hold
     )
     elapsed = time.perf_counter() - start

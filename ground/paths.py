@@ -16,8 +16,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from .errors import InputError
-
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 DECKS = ROOT / "decks"
@@ -49,23 +47,11 @@ PROTECTED = (
 
 
 def protected_problem(path: Path | str) -> str | None:
-    """Why a command may not write into ``path``, or None.
+    """Why a command may not write into ``path``, or None (ground.gate, the
+    one gate every write passes: ``~``, ``..`` and links resolved first)."""
+    from .gate import problem
 
-    The path is resolved first (every symbolic link on it followed, also of
-    the parts that do not exist yet), so that a link cannot lead a write
-    into the project's record or code.
-    """
-    where = Path(path).expanduser().resolve()
-    if where == ROOT:
-        return "is the project's root; give a folder of its own (runs/<name>)"
-    for name in PROTECTED:
-        folder = (ROOT / name).resolve()
-        if where == folder or where.is_relative_to(folder):
-            shown = "" if where == Path(path).expanduser().absolute() else f" (it leads to {where})"
-            what = "the committed record" if name in ("docs", "studies") else "the project's own"
-            hint = "; only --docs writes docs/" if name == "docs" else ""
-            return f"is inside {name}/, {what}{shown}{hint}"
-    return None
+    return problem(path)
 
 
 def runs_folder() -> Path:
@@ -77,7 +63,7 @@ def runs_folder() -> Path:
     ground.errors.InputError
         If $IMPACT_RUNS points into the project's record or code.
     """
-    folder = Path(os.environ.get("IMPACT_RUNS") or ROOT / "runs")
-    if problem := protected_problem(folder):
-        raise InputError(f"IMPACT_RUNS: {folder} {problem}")
-    return folder
+    from .gate import gate
+
+    setting = os.environ.get("IMPACT_RUNS")
+    return gate(setting, "IMPACT_RUNS") if setting else ROOT / "runs"

@@ -24,6 +24,7 @@ from analysis.kinds import READINGS_KINDS
 from analysis.readings import Setup, read_record, read_rows
 from analysis.study_tables import read_tables
 from analysis.table import MEAN_COLUMNS, rounded, write_csv
+from ground.gate import gate, make_folder
 
 from . import binary, binary_findings, figures, grazing, normals
 from . import speed as speed_page
@@ -84,6 +85,8 @@ class ResultsPage:
 
     def write(self, study: StudyTables) -> dict:
         """The tables, figures and page; returns fits.json's numbers."""
+        gate(study.page)  # the one gate of every write (ground.gate)
+        gate(study.figure_dir)
         fits, means = study_numbers.results_numbers(study.rows, study.resamples)
         extra = self.sections(study, fits)
         write_csv(means, study.out / "means.csv", MEAN_COLUMNS)
@@ -197,8 +200,9 @@ def readings_page(kind: str, tables: Path, page: Path, setup: Setup) -> Path:
     (rows.csv, run.json); its figures go into figures/<page's name>/ beside it."""
     module = readings_module(kind)
     figure_dir = page.parent / "figures" / page.stem
+    gate(page)  # the one gate of every write (ground.gate)
     if hasattr(module, "FIGURE"):
-        figure_dir.mkdir(parents=True, exist_ok=True)
+        make_folder(figure_dir)
     record = read_record(tables)
     setup = replace(setup, record=record, figures=figure_dir.relative_to(page.parent).as_posix())
     body = module.page(read_rows(tables), setup, figure_dir)

@@ -15,6 +15,7 @@ from analysis.study_tables import (
     write_study_tables,
 )
 from analysis.table import collect
+from ground.gate import gate, make_folder
 from ground.paths import ROOT
 
 from .kinds import StudyTables, table_kind
@@ -60,6 +61,9 @@ def report(
     jobs = study.jobs()
     rows = collect([(j["lattice"], Path(j["folder"])) for j in jobs])
     failed = [read_failure(j) for j in jobs if (Path(j["folder"]) / "failed.json").exists()]
+    for place in (tables, page):  # the one gate of every write (ground.gate)
+        if place is not None:
+            gate(place)
     info = record_timings(study, rows)
     summary = render(
         info,
@@ -74,7 +78,7 @@ def report(
         sections,
     )
     if tables is not None:
-        tables.mkdir(parents=True, exist_ok=True)
+        make_folder(tables)
         for name in ("impacts.csv", "means.csv", "fits.json", "speed.json", "failed.csv"):
             if (study.folder / name).exists():  # a speed study has speed.json instead of fits
                 (tables / name).write_bytes((study.folder / name).read_bytes())
@@ -114,7 +118,8 @@ def report_from_tables(
 
     info, rows, failed = read_tables(tables)
     out = Path(out) if out is not None else Path(tables)
-    out.mkdir(parents=True, exist_ok=True)
+    gate(page)
+    make_folder(out)
     (out / "study.json").write_text(public_record(info))
     return render(
         info,

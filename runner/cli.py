@@ -6,6 +6,7 @@ where its tables and page go runner/study_outputs.py's.
 
 from __future__ import annotations
 
+import os
 import sys
 
 from builder.cli import (
@@ -18,8 +19,9 @@ from builder.scene import (
     speed_warning,
 )
 from ground.checks import InPath, OutFolder, require_out_folder
-from ground.errors import BuildError, InputError
-from ground.launch import LammpsError
+from ground.errors import BuildError, InputError, os_error_line
+from ground.gate import environment_paths, gate
+from ground.launch import LammpsError, mpi_launcher, require_lmp
 
 from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
 from .stopping import Stopped, stop_on_signals
@@ -89,6 +91,24 @@ def parser() -> OneLineParser:
     return parser
 
 
+def check_launch(options) -> None:
+    """Refuse, before anything is built, a run that cannot start: more ranks
+    than this machine's cores (mpirun would refuse them after, in a message
+    of dashes) unless MPI is told to oversubscribe or IMPACT_MPIRUN launches
+    elsewhere; no mpirun or IMPACT_MPIRUN's program; no lmp."""
+    nprocs = options.nprocs
+    if options.route == "lmp" or nprocs > 1:
+        mpi_launcher(nprocs)
+        require_lmp()
+    cores = os.cpu_count() or 1
+    told = os.environ.get("OMPI_MCA_rmaps_base_oversubscribe") or os.environ.get("IMPACT_MPIRUN")
+    if nprocs > cores and not told:
+        raise InputError(
+            f"--np must be at most this machine's {cores} cores, got {nprocs} "
+            "(OMPI_MCA_rmaps_base_oversubscribe=1 runs more ranks than cores, slowly)"
+        )
+
+
 def main(argv: list[str] | None = None) -> int:
     from analysis.text_table import format_table
 
@@ -98,16 +118,24 @@ def main(argv: list[str] | None = None) -> int:
     if isinstance(getattr(args, "preset", None), StudyFile):  # the file, and its study's name
         args.described, args.preset = args.preset, args.preset.study.name
     try:
+        environment_paths()  # IMPACT_RUNS, IMPACT_POISSON_CACHE: through the one gate
         if args.command == "impact":
             spec = spec_from_args(args)
             out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
             require_out_folder("--out", out)
             validate_spec(spec)
+            options = options_from_args(args)
+            if problem := options.scene_problem(spec):  # before anything is built
+                raise InputError(problem)
+            check_launch(options)
             if warning := speed_warning(spec.vn, spec.gamma_deg):
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
-            results = [run_impact(spec, out, options_from_args(args))]
+            results = [run_impact(spec, out, options)]
         elif args.command == "run":
-            results = [run_scene(args.scene, options_from_args(args))]
+            gate(args.scene, "scene")  # it writes its results into the folder
+            options = options_from_args(args)
+            check_launch(options)
+            results = [run_scene(args.scene, options)]
         elif args.command == "page":
             return remake_page(args)
         elif args.command == "tilt":
@@ -126,6 +154,9 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 128 + stop.signum
+    except OSError as error:  # a full disk, a read-only folder, a dangling link
+        print(f"python -m runner: error: {os_error_line(error)}", file=sys.stderr)
+        return 1
     for result in results:
         warn_if_inaccurate(result)
     print(format_table(results))

@@ -6,14 +6,16 @@ workers there are.
 
 from __future__ import annotations
 
-import shutil
 import time
 from dataclasses import replace
+
+from ground.gate import remove
 
 from .clusters import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
 from .folders import state
 from .sample_bodies import BODIES_FOLDER
 from .study import Study
+from .study_lock import made_by_lock, study_lock
 from .tasks import WORKER_PHASES, group_task
 
 PROGRESS_EVERY = 10.0  # seconds between progress lines
@@ -116,7 +118,13 @@ def run_study(
     spec = replace(cluster or ClusterSpec(workers=workers), ranks=study.options.nprocs)
     if client is None:
         spec.check_ranks()
-    created = not study.folder.exists()
+    created = not study.folder.exists() or made_by_lock(study.folder)
+    with study_lock(study.folder):  # one run per study folder (its command's, if it holds it)
+        return run_locked(study, spec, retry_failed, client, created)
+
+
+def run_locked(study: Study, spec: ClusterSpec, retry_failed: bool, client, created: bool) -> dict:
+    """``run_study`` with the study folder's lock held."""
     jobs = study.prepare(retry_failed)
     todo = [j for j in jobs if state(j) == "pending"]
     told = (
@@ -136,12 +144,12 @@ def run_study(
                     counts.update(drive(study, jobs, todo, own, spec.size()))
     except ClusterUnavailable:
         if created:  # nothing ran: the study's name stays free
-            shutil.rmtree(study.folder, ignore_errors=True)
+            remove(study.folder)
         raise
     finally:
         # the workers' scratch (runner.study.SampleBodies), also what workers
         # that crashed left: no task of this study runs any more
-        shutil.rmtree(study.folder / BODIES_FOLDER, ignore_errors=True)
+        remove(study.folder / BODIES_FOLDER)
     return {**study.summary(jobs), **counts}
 
 
@@ -199,6 +207,8 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
             for outcome in outcomes:
                 if outcome["state"] == "settled":
                     continue
+                if outcome["state"] == "disk":  # a full disk, a read-only folder: stop here
+                    raise OSError(*outcome["error"])
                 progress.done += 1
                 if outcome["state"] in ("failed", "stuck"):
                     progress.failed += outcome["state"] == "failed"

@@ -91,7 +91,15 @@ def run_scene(
                 "study's run ended: run the study again (--retry-failed for a failed impact)"
             )
         raise InputError(f"scene: no data file {data} (write one with python -m builder scene)")
-    scene = json.loads((folder / "scene.json").read_text())
+    try:
+        scene = json.loads((folder / "scene.json").read_text(encoding="utf-8"))
+        if not isinstance(scene, dict) or not isinstance(scene.get("spec"), dict):
+            raise ValueError("no scene's spec in it")
+    except (OSError, ValueError) as error:
+        raise InputError(
+            f"scene: {folder / 'scene.json'} is not a scene's record ({error}); "
+            "write the folder again with python -m builder scene"
+        ) from None
     if scene.get("springs", "class2") != options.springs:
         raise InputError(
             f"springs must match the data file ({scene.get('springs')}), got {options.springs}"

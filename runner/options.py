@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, replace
 
 from builder.declared import with_options
@@ -45,7 +46,53 @@ class RunOptions:
         the 800-point disk on its 1,600-point wall."""
         if self.dt != AUTO:
             return self
-        return replace(self, dt=DEFAULT_DT * spec.step_scale)
+        # times are c's over the disk's lengths: a disk of radius R takes R
+        # times as long (at R = 1, exactly DEFAULT_DT times the step scale)
+        return replace(self, dt=DEFAULT_DT * spec.step_scale * spec.radius)
+
+    def scene_problem(self, spec) -> str | None:
+        """Why these options cannot run ``spec`` (a builder.scene.SceneSpec)
+        at all, or None: dt auto outside dt's range (a radius far from 1), a
+        tmax shorter than one step or than the disk's approach to the wall
+        (c-speeds only: speed_unit spring has its own unit), a start beyond
+        the wall's end. A disk still on the wall at tmax is an outcome, not
+        refused here."""
+        step = self.for_scene(spec).step
+        if self.dt == AUTO and not DT.contains(step):
+            return (
+                f"radius {spec.radius:g}: its step (dt auto, {DEFAULT_DT:g} x the scene's step "
+                f"scale x radius) would be {step:.3g}, outside dt's {DT.describe()}: give a "
+                "radius nearer 1, more disk points, or --dt"
+            )
+        if self.tmax < step:
+            return (
+                f"tmax {self.tmax:g} R/c is shorter than one step (dt {step:g}): give a larger tmax"
+            )
+        if spec.target != "wall":
+            return None
+        gap = (1.0 + spec.start_gap) * spec.wall_spacing * spec.radius
+        # placed back along its velocity, the disk starts gap tan(gamma) to the
+        # side of where it touches: beyond the wall's end, it never meets it
+        # (near 90 degrees LAMMPS says only "box size << cutoff")
+        side = gap * math.tan(math.radians(spec.gamma_deg))
+        if side > spec.wall_width * spec.radius / 2.0:
+            return (
+                f"gamma {spec.gamma_deg:g}: the disk would start {side:.3g} to the side of where "
+                f"it touches the wall, beyond the wall's half-width "
+                f"{spec.wall_width * spec.radius / 2.0:g}; give a smaller gamma or a wider wall "
+                "(--wall-width)"
+            )
+        if spec.speed_unit != "c":
+            return None
+        # the disk starts start_gap wall spacings beyond the contact's range
+        approach = spec.start_gap * spec.wall_spacing * spec.radius / spec.vn
+        if self.tmax < approach:
+            return (
+                f"tmax {self.tmax:g} R/c is too short for the disk to reach the wall: at vn "
+                f"{spec.vn:g} it takes {approach:.3g} to cross the gap it starts with; give a "
+                "larger tmax or vn"
+            )
+        return None
 
     @property
     def step(self) -> float:

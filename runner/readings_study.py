@@ -23,6 +23,7 @@ from analysis.kinds import kind_module
 from analysis.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
 from ground.checks import require_out_folder
 from ground.errors import InputError
+from ground.gate import make_folder
 from pages.kinds import readings_page
 
 from .provenance import machine
@@ -156,7 +157,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
         for label in module.rank(rows, setup)[: rerun["then_best"]]:
             for lattice in rerun["then_lattices"]:
                 rows += run(label, lattices=(lattice,))
-    out.mkdir(parents=True, exist_ok=True)
+    make_folder(out)
     write_tables(rows, out, module.COLUMNS)
     write_record({**record, "machine": machine()}, out)
     page = out.parent / f"{described.page or name}.md" if args.docs else out / f"{name}.md"

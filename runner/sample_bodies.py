@@ -11,6 +11,7 @@ from pathlib import Path
 from builder.lammps_data import write_bodies
 from ground.checks import word_problem
 from ground.errors import InputError
+from ground.gate import make_folder
 from ground.launch import data_to_restart
 
 # Where a study's workers keep the bodies of the samples they run: a folder
@@ -57,7 +58,7 @@ class SampleBodies:
             folder = study_folder / BODIES_FOLDER / f"{socket.gethostname()}-{os.getpid()}"
             if problem := word_problem(str(folder)):
                 raise InputError(f"the workers' folder for the bodies {problem}: {folder}")
-            folder.mkdir(parents=True, exist_ok=True)
+            make_folder(folder)
             self.files.pop(key, None)
             if len(self.files) >= self.KEPT:
                 self.files.pop(next(iter(self.files))).unlink(missing_ok=True)

@@ -8,9 +8,13 @@ import, and nothing here changes what a file says.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+from builder.outputs import committed, require_own_page
 from ground.errors import InputError
+from ground.gate import grant
+from ground.paths import DOCS
 
 from .study import Study
 from .study_file import STUDIES, StudyFile, read_study_file, study_path
@@ -56,3 +60,48 @@ def built_in_pages() -> tuple[dict[str, str], dict[str, tuple[str, ...]]]:
     pages = {name: f.page for name, f in files.items() if f.page}
     readings = {name: f.readings for name, f in files.items() if f.readings}
     return pages, readings
+
+
+def committed_studies() -> list[str]:
+    """The names of the study files of studies/ that git tracks."""
+    return sorted(Path(p).stem for p in committed(STUDIES) if p.endswith(".toml"))
+
+
+def require_page(described: StudyFile, page: str, *also: str) -> None:
+    """Let ``described`` write docs/<page>.md, docs/<page>/ and
+    docs/figures/<page>/ (and the same of the pages ``also``, which its page
+    tabulates) if the page is its own (builder.outputs.require_own_page), by
+    opening the one gate of every write (ground.gate) to them.
+
+    Raises
+    ------
+    ground.errors.InputError
+        For a page that is another study's, committed and not the file's own,
+        or named by two study files.
+    """
+    files = all_studies()
+    tracked = set(committed_studies())
+    name = described.study.name
+    path = described.path
+    own = STUDIES / f"{name}.toml"
+    committed_file = path is not None and path.resolve() == own.resolve() and name in tracked
+    for each in (page, *also):
+        # a page's owner is the file whose page it is; a reading's (tables a
+        # page tabulates, with no page of their own) the file that names it
+        owners = [n for n in sorted(tracked) if n in files and files[n].page == each]
+        owners = owners or [n for n in sorted(tracked) if n in files and each in files[n].readings]
+        naming = [
+            n
+            for n, f in files.items()
+            if n not in tracked and n != name and each in (f.page, *f.readings)
+        ]
+        made_by = None
+        record = DOCS / each / "study.json"
+        if record.is_file():
+            try:
+                made_by = json.loads(record.read_text(encoding="utf-8")).get("name")
+            except (OSError, ValueError, AttributeError):
+                made_by = None
+        where = str(path) if path else name
+        require_own_page(where, name, each, owners, naming, committed_file, made_by)
+        grant(DOCS / f"{each}.md", DOCS / each, DOCS / "figures" / each)

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 from dataclasses import asdict, field
 from pathlib import Path
 
@@ -21,13 +20,15 @@ from builder.lammps_data import write_scene
 from builder.materials import STUDY_LATTICES
 from builder.outputs import NAME_MAX
 from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, wall_spring_constant
-from ground.checks import require_out_folder, word_problem
+from ground.checks import portable_problem, require_out_folder, word_problem
 from ground.errors import InputError
+from ground.gate import gate, make_folder, remove, write_text
 from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROOT too)
 
 from .folders import (
     SET_ASIDE,
     STARTED,
+    check_made_as_asked,
     failed_state,
     set_aside_if_other_wall,
     set_aside_if_unreadable,
@@ -46,6 +47,16 @@ IMPACTS_PER_WORKER_MINUTE = 505.0
 # What may differ between a study's study.json and a command that resumes it
 # with --extend: more samples, more lattices.
 EXTENDABLE = ("samples", "lattices")
+_cap = [MAX_IMPACTS]
+
+
+def impact_cap(impacts: int | None = None) -> int:
+    """The most impacts a command may run (a study, or every combination of a
+    study file's axes together): MAX_IMPACTS, or what --max-impacts allows
+    (``impacts``, set once by the command line)."""
+    if impacts is not None:
+        _cap[0] = impacts
+    return _cap[0]
 
 
 def name_problem(name: str) -> str | None:
@@ -61,7 +72,7 @@ def name_problem(name: str) -> str | None:
         return "must be one folder under runs/, without '/' or '..'"
     if len(name.encode()) > NAME_MAX:
         return f"must be a folder name of at most {NAME_MAX} bytes ({len(name.encode())} given)"
-    return word_problem(name)
+    return word_problem(name) or portable_problem(name)
 
 
 def study_angles(count: int) -> list[float]:
@@ -153,14 +164,15 @@ class Study:
                     f"{what} names an impact's folder twice ({', '.join(twice)}): "
                     "give distinct values"
                 )
-        size = self.samples * self.angles * len(self.lattices) * len(self.velocities())
-        if size > MAX_IMPACTS:
+        size = self.size()
+        if size > impact_cap():
             hours = size / (IMPACTS_PER_WORKER_MINUTE * 2) / 60.0
             raise InputError(
-                f"samples x angles x lattices x speeds must be at most {MAX_IMPACTS} impacts, "
+                f"samples x angles x lattices x speeds must be at most {impact_cap()} impacts, "
                 f"got {self.samples} x {self.angles} x {len(self.lattices)} x "
                 f"{len(self.velocities())} = {size}, about "
-                f"{hours:,.0f} hours on 2 workers of this project's machine"
+                f"{hours:,.0f} hours on 2 workers of this project's machine "
+                "(--max-impacts allows more)"
             )
         regular = [x for x in self.lattices if LATTICES[x]["lattice"] != "random"]
         if self.regular_surface != SceneSpec.regular_surface and not regular:
@@ -176,7 +188,16 @@ class Study:
                 )
         self.options.validate()
         for lattice in self.lattices:  # once here, rather than in every impact
-            self.spec({"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}).validate()
+            job = {"lattice": lattice, "seed": self.first_seed, "gamma": 45.0}
+            self.spec(job).validate()
+            # the slowest speed at the largest angle: the longest run, the farthest start
+            slowest = self.spec({**job, "vn": min(self.velocities()), "gamma": max(self.gammas())})
+            if problem := self.options.scene_problem(slowest):
+                raise InputError(problem)
+
+    def size(self) -> int:
+        """How many impacts the study has."""
+        return self.samples * self.angles * len(self.lattices) * len(self.velocities())
 
     def velocities(self) -> list[float]:
         """The study's normal approach speeds, increasing."""
@@ -200,7 +221,9 @@ class Study:
         """The study a study.json records; fields it lacks (older studies) take
         their defaults, keys that are not fields (wall_clock) are skipped."""
         try:
-            info = json.loads(path.read_text())
+            info = json.loads(path.read_text(encoding="utf-8"))
+            if not isinstance(info, dict):
+                raise TypeError(f"a JSON {type(info).__name__}, not an object")
             fields = {k: v for k, v in info.items() if k in cls.__dataclass_fields__}
             fields["lattices"] = tuple(fields.get("lattices", cls.lattices))
             fields["cot_gamma"] = tuple(fields.get("cot_gamma", ()))
@@ -210,8 +233,11 @@ class Study:
             return cls(
                 **fields, options=RunOptions(**{k: v for k, v in options.items() if k in known})
             )
-        except (OSError, ValueError, TypeError) as error:
-            raise InputError(f"{path}: not a study's record ({error})") from None
+        except (OSError, ValueError, TypeError, AttributeError) as error:
+            raise InputError(
+                f"{path}: not a study's record ({error}); remove it: the next run records the "
+                "study again and checks every finished impact against it"
+            ) from None
 
     def jobs(self) -> list[dict]:
         """Every impact, grouped by sample: (lattice, seed), then speed and angle.
@@ -255,7 +281,7 @@ class Study:
     def prepare(self, retry_failed: bool = False) -> list[dict]:
         """Check the study, record it in its folder, and return its jobs."""
         self.validate()
-        self.folder.mkdir(parents=True, exist_ok=True)
+        make_folder(self.folder, "--name")
         # common_wall: every lattice meets the same wall (builder.scene.wall_spring_constant),
         # which the results page reads; study.json files from before lack it
         record = {**asdict(self), "common_wall": True}
@@ -264,8 +290,9 @@ class Study:
             old = json.loads(path.read_text())
             if "wall_clock" in old and Study.from_json(path).grid() == self.grid():
                 record["wall_clock"] = old["wall_clock"]
-        path.write_text(json.dumps(record, indent=1))
         jobs = self.jobs()
+        for job in jobs:  # a link in the study's folder may not lead a write elsewhere
+            gate(job["folder"], f"study {self.name}")
         if retry_failed:
             for job in jobs:
                 (Path(job["folder"]) / "failed.json").unlink(missing_ok=True)
@@ -273,7 +300,19 @@ class Study:
             set_aside_if_unreadable(job)
             if self.target == "wall":
                 set_aside_if_other_wall(job, wall_spring_constant(self.spec(job))[0])
+        self.check_done(jobs)  # before study.json says the study is this one
+        write_text(path, json.dumps(record, indent=1))
         return jobs
+
+    def check_done(self, jobs: list[dict]) -> None:
+        """Refuse finished impacts that another study made (runner.folders:
+        every option of their scene and run against the study's), whatever
+        study.json says; unreadable records are set aside and run again."""
+        for job in jobs:
+            if (Path(job["folder"]) / "result.json").exists():
+                spec = self.spec(job)
+                options = self.options.for_scene(spec).as_dict()
+                check_made_as_asked(job, asdict(spec), options)
 
     def build(self, job: dict) -> Path:
         """The job's scene, written afresh into its folder (an impact killed
@@ -281,10 +320,12 @@ class Study:
         its sample's bodies, written once per process (``SAMPLE_BODIES``);
         on several ranks, the impact's own placed scene."""
         folder = Path(job["folder"])
-        folder.mkdir(parents=True, exist_ok=True)
+        if folder.is_symlink():  # its own folder, never a link's target emptied
+            remove(folder)
+        make_folder(folder)
         for path in folder.iterdir():
             if path.name not in (*SET_ASIDE, STARTED):
-                shutil.rmtree(path) if path.is_dir() else path.unlink()
+                remove(path)
         scene = build_scene(self.spec(job))
         if self.options.nprocs > 1:  # the placed scene, as runner impact --np runs it: on
             # several ranks the bodies' restart has another box, so another decomposition

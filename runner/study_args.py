@@ -110,7 +110,7 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
         }
         refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
         if refused:
-            said = "; ".join(f"{k} {before.get(k)!r} there, {after[k]!r} asked" for k in refused)
+            said = "; ".join(differences(refused, before, after, "there", "asked"))
             hint = (
                 " (--extend adds samples or lattices)"
                 if set(refused) <= set(EXTENDABLE) and not args.extend
@@ -143,6 +143,23 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
     return study
 
 
+def differences(keys: list[str], before: dict, after: dict, then: str, now: str) -> list[str]:
+    """Each of ``keys`` as 'key OLD then, NEW now'; a record's (the run's
+    options) as the one field of it that differs, not the two records."""
+    told = []
+    for key in keys:
+        old, new = before.get(key), after[key]
+        if isinstance(old, dict) and isinstance(new, dict):
+            told += [
+                f"{key}.{k} {old.get(k)!r} {then}, {new.get(k)!r} {now}"
+                for k in new
+                if old.get(k) != new.get(k)
+            ] or [f"{key} {old!r} {then}, {new!r} {now}"]
+        else:
+            told.append(f"{key} {old!r} {then}, {new!r} {now}")
+    return told
+
+
 def file_changed(source: dict | None, said: dict, extend: bool, name: str, file) -> dict:
     """What a study file changed since its study was first run (``source``,
     recorded in study.json) that --extend lets it change: more samples or
@@ -164,7 +181,7 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
     }
     refused = [k for k in differ if not (extend and k in EXTENDABLE and grows[k])]
     if refused:
-        told = "; ".join(f"{k} {source.get(k)!r} then, {said[k]!r} now" for k in refused)
+        told = "; ".join(differences(refused, source, said, "then", "now"))
         hint = (
             "; --extend takes more samples or lattices"
             if set(refused) <= set(EXTENDABLE) and not extend

@@ -6,7 +6,7 @@ import argparse
 import time
 
 from builder.scene import VN
-from ground.checks import InPath, require_out_folder
+from ground.checks import InPath, Range, require_out_folder
 from ground.errors import InputError
 
 from .cluster_args import SLURM_ONLY, add_cluster_arguments, cluster_from_args, option
@@ -16,12 +16,15 @@ from .study import (
     ANGLES,
     COT_GAMMA,
     LATTICES,
+    MAX_IMPACTS,
     SAMPLES,
     Study,
+    impact_cap,
     runs_folder,
 )
 from .study_args import STUDY_RUN, STUDY_SCENE, study_from_args
 from .study_file import READINGS_KINDS, StudyFile, axis_studies
+from .study_lock import study_lock
 from .study_outputs import (
     combine_tables,
     docs_page,
@@ -110,6 +113,19 @@ def add_study_arguments(study) -> None:
     )
     add_cluster_arguments(study)
     study.add_argument("--retry-failed", action="store_true", help="run failed impacts again")
+    study.add_argument(
+        "--max-impacts",
+        type=Range(1, 100_000_000, integer=True),
+        default=None,
+        help=f"the most impacts the command may run, every combination of a study file's "
+        f"axes together (default: {MAX_IMPACTS:,})",
+    )
+    study.add_argument(
+        "--wait",
+        action="store_true",
+        help="if another run of the same study folder is under way, wait for it to end "
+        "(default: refuse, naming its process)",
+    )
     scene = study.add_argument_group("the scene and the run (default: the study's)")
     scene.add_argument(
         "--vn", type=GRID["vn"], default=None, help=f"normal approach speed, {VN.describe()}"
@@ -196,6 +212,8 @@ def run_study_command(args) -> int:
     first runs."""
     from .readings_study import run_readings_study
 
+    impact_cap(getattr(args, "max_impacts", None) or MAX_IMPACTS)
+
     described = args.described
     readings_kind = described.kind in READINGS_KINDS
     axes = described.axes if not readings_kind else {}
@@ -240,6 +258,15 @@ def run_study_command(args) -> int:
         except InputError as error:  # which combination, and which file
             told = str(error).removeprefix(f"{described.path}: ")
             raise InputError(f"{described.path}: combination {sub.name}: {told}") from None
+    total = sum(study.size() for _, study in planned)
+    if total > impact_cap():
+        sizes = " + ".join(str(study.size()) for _, study in planned[:6])
+        more = " + ..." if len(planned) > 6 else ""
+        raise InputError(
+            f"{described.path}: its {len(planned)} combinations have {total:,} impacts together "
+            f"({sizes}{more}), more than {impact_cap():,}: give fewer values or samples, or "
+            "--max-impacts"
+        )
     status = 0
     for sub_args, study in planned:
         print(f"{args.preset}: {study.name}", flush=True)
@@ -281,18 +308,21 @@ def run_one_study(args, described: StudyFile | None, study: Study | None = None)
         return 0
     cluster = cluster_from_args(args, runs_folder() / (args.name or args.preset))
     study = study or study_from_args(args, described.study, file=described.path)
-    if not args.report_only:
-        start = time.monotonic()
-        counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
-        record_wall_clock(study, time.monotonic() - start, counts)
-    summary = report(
-        study,
-        page=places.page,
-        preset=args.preset,
-        tables=places.tables,
-        readings=places.readings,
-        sections=sections,
-    )
+    with study_lock(study.folder, wait=getattr(args, "wait", False)):  # one run per folder
+        if args.report_only:  # a page of what the study asks, never of another's rows
+            study.check_done(study.jobs())
+        else:
+            start = time.monotonic()
+            counts = run_study(study, retry_failed=args.retry_failed, cluster=cluster)
+            record_wall_clock(study, time.monotonic() - start, counts)
+        summary = report(
+            study,
+            page=places.page,
+            preset=args.preset,
+            tables=places.tables,
+            readings=places.readings,
+            sections=sections,
+        )
     if places.tabulated:
         remake_tabulating_page(described, {**places.readings, places.doc_name: places.tables})
     causes = "; ".join(f"{count}: {cause}" for cause, count in summary["causes"].items())

@@ -59,12 +59,13 @@ from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
 from builder.study_names import KINDS, NAMED, READINGS_KINDS
 from builder.study_names import SECTIONS as PAGE_SECTIONS
+from ground.checks import plain_zero
 from ground.errors import InputError
 from ground.paths import STUDIES
 
 from .options import RANKS, RunOptions, on_ranks
 from .study import Study
-from .values import VALUES
+from .values import COT_GAMMA, VALUES
 
 GRID = ("lattices", "angles", "cot_gamma", "gamma_deg", "samples", "first_seed", "vn", "speeds")
 SECTIONS = ("grid", "scene", "run", "rerun")
@@ -139,12 +140,18 @@ def read_study_file(path: Path) -> StudyFile:
         option, a value of the wrong kind, or a file that is not TOML.
     """
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        # utf-8-sig: a byte-order mark (some editors write one) is read, not refused
+        data = plain_zero(tomllib.loads(path.read_text(encoding="utf-8-sig")))
     except UnicodeDecodeError as error:
         raise InputError(f"{path}: not a study file (not UTF-8 text: {error.reason} at byte "
                          f"{error.start})") from None  # fmt: skip
     except (OSError, tomllib.TOMLDecodeError) as error:
         raise InputError(f"{path}: not a study file ({error})") from None
+    if not data:  # never the default study run in its place
+        raise InputError(
+            f"{path}: an empty study file; give at least one key (python -m runner study "
+            "demo's file, studies/demo.toml, is a start)"
+        )
     page = data.pop("page", "")
     if page != "" and (problem := page_problem(page)):
         raise InputError(f"{path}: page {problem}, got {page!r}")
@@ -239,10 +246,24 @@ def read_study_file(path: Path) -> StudyFile:
     if sweep != "cross" and not axes:
         raise InputError(f"{path}: sweep {sweep!r} needs axes (an option given a list)")
     grid = {k: v for (s, k), v in values.items() if s != "run"}
+    if "vn" in grid and "speeds" in grid:  # one would be ignored
+        raise InputError(
+            f"{path}: [grid] gives both vn and speeds; give one (speeds: a folder per speed "
+            "in one study; vn: one speed, or a list of them as an axis)"
+        )
     if "gamma_deg" in grid:
         if "cot_gamma" in grid:
             raise InputError(f"{path}: [grid] gives both gamma_deg and cot_gamma; give one")
-        grid["cot_gamma"] = [cot_of_degrees(g) for g in grid.pop("gamma_deg")]
+        grid["cot_gamma"] = [cot_of_degrees(g) for g in grid["gamma_deg"]]
+        for degrees, cot in zip(grid.pop("gamma_deg"), grid["cot_gamma"], strict=True):
+            if not COT_GAMMA.contains(cot):  # said as the user wrote it: gamma, not cot gamma
+                low, high = (
+                    math.degrees(math.atan(1.0 / c)) for c in (COT_GAMMA.high, COT_GAMMA.low)
+                )
+                raise InputError(
+                    f"{path}: [grid] gamma_deg must be each in [{low:.3g}, {high:.3g}] degrees "
+                    f"(cot gamma in [{COT_GAMMA.low:g}, {COT_GAMMA.high:g}]), got {degrees!r}"
+                )
     for key in LISTS:
         if key in grid:
             grid[key] = tuple(grid[key])

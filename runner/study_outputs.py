@@ -9,12 +9,11 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from builder.outputs import require_new_page
 from ground.checks import require_out_folder
 from ground.errors import InputError
 from ground.paths import runs_folder
 
-from .studies import all_studies, built_in_pages
+from .studies import all_studies, built_in_pages, require_page
 from .study import ROOT
 from .study_file import READINGS_KINDS, StudyFile
 
@@ -55,8 +54,8 @@ def docs_page(args, described) -> str | None:
             f"{readings if described.readings else ''}; --name {name} is not one: leave out "
             f"--docs (its page goes into runs/{name}/)"
         )
-    if not described.built_in:
-        require_new_page(str(described.path), args.preset, page, *built_in_pages())
+    # every file, in studies/ or not: the page must be its own (runner.studies)
+    require_page(described, page, *([described.page] if page != described.page else []))
     return page
 
 
@@ -125,6 +124,11 @@ def remake_page(args) -> int:
     (--all: every study's that has them)."""
     if args.all == (args.preset is not None):
         raise InputError("page: give a STUDY or --all, not both or neither")
+    if args.out is not None and (args.out / "study.json").exists():  # a study's own folder
+        raise InputError(
+            f"--out: {args.out} holds a study (study.json), whose page and tables this would "
+            "replace; give a folder of its own"
+        )
     if not args.all:
         print(f"wrote {shown(remake_one_page(args.described, args.out))}")
         return 0
@@ -152,8 +156,8 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
     preset = described.study.name
     if not described.page:
         raise InputError(f"the {preset} study has no page in docs/ (its file's page)")
-    if not described.built_in and out is None:
-        require_new_page(str(described.path), preset, described.page, *built_in_pages())
+    if out is None:
+        require_page(described, described.page, *described.readings)
     if described.kind in READINGS_KINDS:
         return remake_readings_page(preset, described, out)
     tables = DOCS / described.page

@@ -19,6 +19,8 @@ count of failures, decides what that means, from the impact's folder:
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import json
 import os
 import socket
@@ -27,6 +29,7 @@ from pathlib import Path
 
 from analysis.failures import impact_state
 from analysis.result import write_json_atomically
+from ground.gate import make_folder
 from ground.launch import lammps_error
 
 from .folders import STARTED, prune
@@ -43,12 +46,18 @@ MAX_ATTEMPTS = 3
 WORKER_PHASES = ("build", "lammps", "rest")
 
 
+# Errors of the disk rather than of an impact: a full disk, a file size
+# limit, a read-only folder. An impact is not failed for them; the study
+# stops with one line naming the file (runner.cli).
+DISK_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EROFS, errno.EACCES, errno.EPERM)
+
+
 def fail(job: dict, message: str) -> dict:
     """Record the impact as without a result (failed.json), with its state:
     failed, or stuck (its disk stayed on the wall, a physical outcome:
     analysis.failures.impact_state), and say so."""
     folder = Path(job["folder"])
-    folder.mkdir(parents=True, exist_ok=True)
+    make_folder(folder)
     state = impact_state(message)
     write_json_atomically({**job, "state": state, "error": message}, folder / "failed.json")
     (folder / STARTED).unlink(missing_ok=True)
@@ -92,11 +101,17 @@ def impact_task(study: Study, job: dict) -> dict:
         # marked before building: writing the sample's restart runs LAMMPS too,
         # and an error there ends this process as one in the run does
         started = {"attempts": attempts + 1, "host": socket.gethostname(), "pid": os.getpid()}
-        folder.mkdir(parents=True, exist_ok=True)
+        make_folder(folder)
         write_json_atomically(started, folder / STARTED)
         study.build(job)  # afresh: what an earlier start left goes, but the mark
         built = time.perf_counter()
         result = run_scene(folder, study.options)
+    except OSError as error:
+        if error.errno in DISK_ERRORS:  # the machine's, not the impact's: the study stops
+            with contextlib.suppress(OSError):  # not an attempt of the impact's
+                (folder / STARTED).unlink(missing_ok=True)
+            return {**job, "state": "disk", "error": [error.errno, error.strerror, error.filename]}
+        return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))
     except Exception as error:  # a Python error, or LAMMPS's with exceptions built in
         return fail(job, lammps_error(folder / "log.lammps", f"{type(error).__name__}: {error}"))
     prune(folder)  # started.json with the rest
@@ -115,4 +130,9 @@ def impact_task(study: Study, job: dict) -> dict:
 
 def group_task(study: Study, jobs: list[dict]) -> list[dict]:
     """Settle every impact of a group, in order, in this worker."""
-    return [impact_task(study, job) for job in jobs]
+    outcomes = []
+    for job in jobs:
+        outcomes.append(impact_task(study, job))
+        if outcomes[-1]["state"] == "disk":  # the rest would meet the same disk
+            break
+    return outcomes

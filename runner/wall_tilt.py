@@ -29,6 +29,7 @@ from analysis.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
+from ground.gate import grant, make_folder
 from ground.paths import ROOT
 from pages.report import shown_path
 from pages.text import markdown_table
@@ -135,12 +136,25 @@ def wall_tilt(args: argparse.Namespace) -> Path:
     tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
     if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
         raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
-    with (tables / "impacts.csv").open() as handle:
-        rows = list(csv.DictReader(handle))
+    try:
+        with (tables / "impacts.csv").open() as handle:
+            rows = list(csv.DictReader(handle))
+        if not rows:
+            raise ValueError("no impact in it")
+        for line, row in enumerate(rows, start=2):
+            if not all(np.isfinite(float(row[k] or "nan")) for k in ("seed", "gamma_deg", "e")):
+                raise ValueError(f"line {line}: seed, gamma_deg or e not a finite number")
+    except (OSError, ValueError, KeyError, TypeError, csv.Error) as error:
+        raise InputError(
+            f"--tables: {tables / 'impacts.csv'} is not a study's table ({error}); "
+            "give a grazing study's tables (runner study grazing)"
+        ) from None
     gamma, high, low = pick(rows, args.gamma)
     study = Study.from_json(tables / "study.json")
+    if args.docs:  # the tilt's own committed page (make's target), through the gate
+        grant(ROOT / "docs" / "wall_tilt")
     folder = args.out or (ROOT / "docs" if args.docs else runs_folder()) / "wall_tilt"
-    folder.mkdir(parents=True, exist_ok=True)
+    make_folder(folder)
     name = f"wall_tilt_{tables.name}"
     work = runs_folder() / "wall_tilt" / "runs" / name
     runs = [run(study, row, work / f"s{row['seed']}", args.dump_every) for row in (high, low)]

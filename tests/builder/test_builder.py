@@ -171,8 +171,8 @@ def test_same_seed_same_files(tmp_path):
 @pytest.mark.parametrize(
     "field, value, words",
     [
-        ("radius", -1.0, "radius must be a number in [0.001, 1000]"),
-        ("radius", float("inf"), "radius must be a number in [0.001, 1000]"),
+        ("radius", -1.0, "radius must be a number in [0.1, 10]"),
+        ("radius", float("inf"), "radius must be a number in [0.1, 10]"),
         ("n_disk", -5, "n_disk must be an integer in [50, 100000]"),
         ("gamma_deg", 90.0, "gamma_deg must be a number in [0, 90)"),
         ("gamma_deg", float("nan"), "gamma_deg must be a number in [0, 90)"),
@@ -195,7 +195,7 @@ def test_bad_spec(field, value, words):
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["--radius", "-1"], "argument --radius: must be a number in [0.001, 1000]"),
+        (["--radius", "-1"], "argument --radius: must be a number in [0.1, 10]"),
         (["--n-disk", "-5"], "argument --n-disk: must be an integer in [50, 100000]"),
         (["--gamma", "0"], "argument --gamma: must be a number in (0, 90)"),
         (["--gamma", "95"], "argument --gamma: must be a number in (0, 90)"),

@@ -197,7 +197,7 @@ def runner_cli(*args, cwd=ROOT):
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["impact", "--radius", "-1"], "argument --radius: must be a number in [0.001, 1000]"),
+        (["impact", "--radius", "-1"], "argument --radius: must be a number in [0.1, 10]"),
         (["impact", "--n-disk", "0"], "argument --n-disk: must be an integer in [50, 100000]"),
         (["impact", "--gamma", "90"], "argument --gamma: must be a number in (0, 90)"),
         (["impact", "--lattice", "hexagonal"], "argument --lattice: invalid choice"),

@@ -99,7 +99,7 @@ def test_report_only_takes_the_grid_from_study_json(uninterrupted):
         (["--angles", "4"], "angles 3 there, 4 asked"),
         (["--samples", "3"], "samples 2 there, 3 asked; leave the option out"),
         (["--extend"], "--extend does not apply to --report-only"),
-        (["--dt", "0.001"], "'dt': 0.001"),
+        (["--dt", "0.001"], "options.dt 'auto' there, 0.001 asked"),
     ],
 )
 def test_another_grid_for_a_study_is_refused(uninterrupted, options, words):

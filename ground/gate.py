@@ -1,0 +1,133 @@
+"""The one gate every file and folder the tool writes or deletes passes.
+
+``gate(path)`` resolves the real path once (``~``, ``..`` and every symbolic
+link, also of the parts that do not exist yet) and refuses the project's
+root, its committed record (docs/, studies/) and its code and build
+(ground.paths.PROTECTED), but for what a command was granted after its own
+checks (``grant``: a study's page in docs/, owned by exactly one committed
+study file; the sampler's cache in build/poisson/). ``make_folder``,
+``write_text`` and ``remove`` write or delete through it; ``remove`` never
+deletes through a link (it removes the link itself). ``environment_paths``
+checks every IMPACT_* path of the environment before any work.
+
+Nothing here imports another package of the project.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+from .errors import InputError
+from .paths import BUILD, PROTECTED, ROOT
+
+# What the project itself writes inside its protected folders without being
+# asked: the Poisson samples' cache (builder.sample_cache) and the contact's
+# tables (builder.contact_table), which make setup starts.
+ALWAYS_GRANTED = (BUILD / "poisson", BUILD / "tables")
+# The environment's paths the tool writes into (runs, the sampler's cache).
+ENVIRONMENT_PATHS = ("IMPACT_RUNS", "IMPACT_POISSON_CACHE")
+_granted: set[Path] = set()
+
+
+def expanded(path: Path | str) -> Path:
+    """``path`` with ``~`` expanded: what the check and the write both use."""
+    return Path(os.path.expanduser(os.fspath(path)))
+
+
+def real(path: Path | str) -> Path:
+    """Where ``path`` really is: ``~``, ``..`` and every link resolved."""
+    return expanded(path).resolve()
+
+
+def grant(*paths: Path | str) -> None:
+    """Let this process write ``paths`` (files or folders, and what is under
+    them) although they lie in the project's protected folders; called by a
+    command once it has checked that they are its own (a study's page)."""
+    _granted.update(real(p) for p in paths)
+
+
+def granted(where: Path) -> bool:
+    return any(where == g or where.is_relative_to(g) for g in (*_granted, *ALWAYS_GRANTED))
+
+
+def problem(path: Path | str) -> str | None:
+    """Why the tool may not write or delete ``path``, or None."""
+    where = real(path)
+    if granted(where):
+        return None
+    if where == ROOT:
+        return "is the project's root; give a folder of its own (runs/<name>)"
+    for name in PROTECTED:
+        folder = (ROOT / name).resolve()
+        if where == folder or where.is_relative_to(folder):
+            shown = "" if where == expanded(path).absolute() else f" (it leads to {where})"
+            what = "the committed record" if name in ("docs", "studies") else "the project's own"
+            hint = "; only --docs writes a study's own page there" if name == "docs" else ""
+            return f"is inside {name}/, {what}{shown}{hint}"
+    return None
+
+
+def gate(path: Path | str, what: str = "") -> Path:
+    """``path`` (``~`` expanded) if the tool may write or delete it, else
+    InputError naming ``what`` (an option) and the path."""
+    if reason := problem(path):
+        raise InputError(f"{what + ': ' if what else ''}{path} {reason}")
+    return expanded(path)
+
+
+def make_folder(path: Path | str, what: str = "") -> Path:
+    """The folder at ``path``, made with its parents, through the gate."""
+    folder = gate(path, what)
+    if folder.is_symlink() and not folder.exists():
+        raise InputError(
+            f"{what + ': ' if what else ''}{folder} is a link to {os.readlink(folder)}, which "
+            "does not exist: remove the link, or make the folder it names"
+        )
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
+def write_text(path: Path | str, text: str, what: str = "") -> Path:
+    """``text`` written to ``path`` through the gate (a link's target is
+    checked where it leads)."""
+    path = gate(path, what)
+    try:
+        path.write_text(text)
+    except OSError as error:  # a full disk's error names no file: this one
+        error.filename = error.filename or str(path)
+        raise
+    return path
+
+
+def remove(path: Path | str, what: str = "") -> None:
+    """Delete ``path``: a link itself (never what it leads to), a file, or a
+    folder with everything in it (links in it removed, not followed)."""
+    path = expanded(path)
+    if path.is_symlink():
+        gate(path.parent, what)  # the link lives in its parent
+        path.unlink()
+        return
+    gate(path, what)
+    if path.is_dir():
+        shutil.rmtree(path)
+    elif path.exists():
+        path.unlink()
+
+
+def environment_paths(environ: os._Environ | dict | None = None) -> None:
+    """Refuse, before any work, an IMPACT_* path of the environment that leads
+    where the tool may not write (one line naming the variable)."""
+    environ = os.environ if environ is None else environ
+    for name in ENVIRONMENT_PATHS:
+        value = environ.get(name, "")
+        if not value or (name == "IMPACT_POISSON_CACHE" and value == "off"):
+            continue
+        gate(value, name)
+        if name == "IMPACT_RUNS":  # its path goes into every impact's LAMMPS deck
+            from .checks import portable_problem, word_problem
+
+            path = str(expanded(value).absolute())
+            if reason := word_problem(path) or portable_problem(path):
+                raise InputError(f"IMPACT_RUNS: {value} {reason}")
