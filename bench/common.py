@@ -12,7 +12,8 @@ from builder.cli import OneLineParser
 from ground import gate
 from ground.checks import OutFolder, Range, require_out_folder
 from ground.errors import InputError
-from ground.paths import ROOT, runs_folder
+from ground.gate import runs_folder
+from ground.paths import ROOT
 from ground.provenance import machine
 from pages.text import markdown_table  # noqa: F401 (the benchmarks' tables)
 

@@ -32,7 +32,7 @@ from bench.common import bench_parser, markdown_table, output_folder, write_repo
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from ground.checks import OutFolder
-from ground.paths import runs_folder
+from ground.gate import runs_folder
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes

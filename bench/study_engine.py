@@ -33,7 +33,7 @@ from pathlib import Path
 
 from bench.common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
 from ground.checks import Range
-from ground.paths import runs_folder
+from ground.gate import runs_folder
 from runner.clusters import ClusterSpec, dask_client
 from runner.driver import job_groups
 from runner.studies import load_study

@@ -44,8 +44,8 @@ from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from ground.checks import OutFolder
 from ground.errors import InputError
+from ground.gate import runs_folder
 from ground.launch import LammpsError
-from ground.paths import runs_folder
 from reference.run import ReferenceOptions, Unstable, run_reference
 from reference.validate import reference_runs, scenes
 from runner.impact import run_scene

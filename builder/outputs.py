@@ -1,7 +1,7 @@
 """Where the project's commands may write: one rule for every entry point.
 
 - A folder a command writes into is checked where it really is: not inside
-  the committed record or the code (ground.paths.protected_problem).
+  the committed record or the code (ground.gate.protected_problem).
 - A study file names its page by a plain name (``page_problem``), never a
   path; it writes docs/<page>.md, docs/<page>/ and docs/figures/<page>/ only.
 - A page in docs/ belongs to exactly one committed study file of studies/:

@@ -9,9 +9,11 @@ from builder.cli import OneLineParser
 from builder.materials import TABLE
 from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
+from ground import gate
 from ground.checks import OutFolder, Range, require_out_folder
 from ground.errors import InputError
-from ground.paths import DOCS, runs_folder
+from ground.gate import runs_folder
+from ground.paths import DOCS
 
 from .stretch import run_stretch
 from .table import calibrate, markdown
@@ -22,7 +24,8 @@ PULL_ANGLE = Range(-180.0, 180.0, unit="degrees")
 
 
 def write_doc(table: dict, path: Path = DOC) -> None:
-    path.write_text(
+    gate.write_text(
+        path,
         "# Materials\n\n"
         f"Measured by `{table['command']}` ({table['date']}, LAMMPS {table['lammps']}, "
         f"revision {table['git_revision']}); the numbers are in `calibration/materials.json`, "
@@ -45,7 +48,7 @@ def write_doc(table: dict, path: Path = DOC) -> None:
         "c = sqrt(E / rho) along each direction; the study's unit is c along the axes, "
         "which are the wall's normal and tangent, so G / (rho c^2) and B / (rho c^2) are G "
         "and B in the study's units (G / (rho c^2) is the shear wave speed squared over c^2), "
-        "beside G of an isotropic solid of the axial nu, 1 / (2 (1 + nu)).\n"
+        "beside G of an isotropic solid of the axial nu, 1 / (2 (1 + nu)).\n",
     )
 
 
@@ -122,7 +125,9 @@ def main(argv: list[str] | None = None) -> int:
                 if args.install
                 else (args.out / "materials.json", args.out / "materials.md")
             )
-            table_path.parent.mkdir(parents=True, exist_ok=True)
+            if args.install:  # make calibrate: the committed table and its page, granted
+                gate.grant(TABLE, DOC)
+            gate.make_folder(table_path.parent, "--out")
             table = calibrate(args.seeds, tuple(args.square), path=table_path)
             write_doc(table, doc)
             print(markdown(table))

@@ -20,6 +20,7 @@ from builder.materials import (
     square_wave_speed_factor,
 )
 from builder.strips import StripSpec
+from ground import gate
 from ground.provenance import git_revision, lammps_program_version
 
 from .stretch import Stretch, run_stretch
@@ -122,7 +123,7 @@ def calibrate(
     ratios = [square_ratio_for_poisson(nu) for nu in STUDY_POISSON] + list(extra_ratios)
     results = stretch_all(strip_specs(random_seeds, ratios))
     table = {**provenance(), "materials": summarise(results)}
-    path.write_text(json.dumps(table, indent=1) + "\n")
+    gate.write_text(path, json.dumps(table, indent=1) + "\n")
     return table
 
 

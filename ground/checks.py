@@ -13,20 +13,14 @@ from __future__ import annotations
 
 import argparse
 import math
-import re
 import tempfile
 from dataclasses import dataclass
 from numbers import Integral, Real
 from pathlib import Path
 
 from .errors import InputError
-from .gate import expanded
-from .paths import protected_problem
-
-# LAMMPS splits a command at whitespace, takes "#" for a comment, "$" for a
-# variable and quotes and "&" for its own syntax: a path with any of them
-# cannot be passed to it as one word.
-LAMMPS_UNSAFE = frozenset("#$&'\"`")
+from .gate import expanded, protected_problem
+from .words import LAMMPS_UNSAFE, portable_problem, word_problem  # noqa: F401 (checks' own)
 
 
 def _number_text(value: float) -> str:
@@ -112,32 +106,6 @@ def plain_zero(value):
     if isinstance(value, dict):
         return {k: plain_zero(v) for k, v in value.items()}
     return value
-
-
-def word_problem(path: str) -> str | None:
-    """Why LAMMPS cannot take ``path`` as one word, or None."""
-    if any(c.isspace() for c in path):
-        return "must not contain whitespace (LAMMPS splits its commands at it)"
-    if bad := sorted(set(path) & LAMMPS_UNSAFE):
-        return f"must not contain {' '.join(bad)} (LAMMPS's own syntax)"
-    return None
-
-
-# What a name or path of runs may hold: LAMMPS (and other tools the runs
-# meet) fail on others ("Cannot open restart file" for non-ASCII, * or %).
-PORTABLE = re.compile(r"[A-Za-z0-9._+=,@:/~-]*")
-
-
-def portable_problem(text: str) -> str | None:
-    """Why ``text`` (a study's name, a file's stem, a runs' folder) is not
-    plain portable characters, or None."""
-    if PORTABLE.fullmatch(text):
-        return None
-    bad = "".join(sorted({c for c in text if not PORTABLE.fullmatch(c)}))
-    return (
-        f"must be plain portable characters (letters, digits and . _ - + = , @), not {bad!r}: "
-        "LAMMPS cannot open such files"
-    )
 
 
 def folder_problem(path: Path | str) -> str | None:

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from .errors import InputError
 from .paths import BUILD, PROTECTED, ROOT
+from .words import portable_problem, word_problem
 
 # What the project itself writes inside its protected folders without being
 # asked: the Poisson samples' cache (builder.sample_cache) and the contact's
@@ -126,8 +127,25 @@ def environment_paths(environ: os._Environ | dict | None = None) -> None:
             continue
         gate(value, name)
         if name == "IMPACT_RUNS":  # its path goes into every impact's LAMMPS deck
-            from .checks import portable_problem, word_problem
-
             path = str(expanded(value).absolute())
             if reason := word_problem(path) or portable_problem(path):
                 raise InputError(f"IMPACT_RUNS: {value} {reason}")
+
+
+def protected_problem(path: Path | str) -> str | None:
+    """Why a command may not write into ``path``, or None (ground.gate, the
+    one gate every write passes: ``~``, ``..`` and links resolved first)."""
+    return problem(path)
+
+
+def runs_folder() -> Path:
+    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
+    cluster's scratch space; the tests' temporary folder).
+
+    Raises
+    ------
+    ground.errors.InputError
+        If $IMPACT_RUNS points into the project's record or code.
+    """
+    setting = os.environ.get("IMPACT_RUNS")
+    return gate(setting, "IMPACT_RUNS") if setting else ROOT / "runs"

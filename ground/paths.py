@@ -13,7 +13,6 @@ targets write (``protected_problem``).
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,26 +43,3 @@ PROTECTED = (
     ".venv",
     ".venv-pypi",
 )
-
-
-def protected_problem(path: Path | str) -> str | None:
-    """Why a command may not write into ``path``, or None (ground.gate, the
-    one gate every write passes: ``~``, ``..`` and links resolved first)."""
-    from .gate import problem
-
-    return problem(path)
-
-
-def runs_folder() -> Path:
-    """Where studies and runs go: runs/ in the clone, or $IMPACT_RUNS (a
-    cluster's scratch space; the tests' temporary folder).
-
-    Raises
-    ------
-    ground.errors.InputError
-        If $IMPACT_RUNS points into the project's record or code.
-    """
-    from .gate import gate
-
-    setting = os.environ.get("IMPACT_RUNS")
-    return gate(setting, "IMPACT_RUNS") if setting else ROOT / "runs"

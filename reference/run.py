@@ -14,6 +14,7 @@ import numpy as np
 from analysis.result import analyse_run, write_json_atomically
 from analysis.series import BINARY_COLUMNS, COLUMNS
 from builder.lammps_data import read_data
+from ground import gate
 from ground.checks import Range
 from ground.errors import InputError
 from ground.provenance import git_revision
@@ -239,8 +240,8 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
                 raise Unstable(f"the disk has not left the wall by tmax = {options.tmax}")
     seconds = time.perf_counter() - start
     energies.append(observe.energies(step * dt, x, v, e_contact))
-    (folder / "series.dat").write_text("".join(series))
-    (folder / "energy.dat").write_text("".join(energies))
+    gate.write_text(folder / "series.dat", "".join(series))
+    gate.write_text(folder / "energy.dat", "".join(energies))
     return seconds
 
 

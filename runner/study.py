@@ -22,8 +22,14 @@ from builder.outputs import NAME_MAX
 from builder.scene import SCENE_OPTIONS, SEED, VN, SceneSpec, wall_spring_constant
 from ground.checks import portable_problem, require_out_folder, word_problem
 from ground.errors import InputError
-from ground.gate import gate, make_folder, remove, write_text
-from ground.paths import ROOT, runs_folder  # noqa: F401 (the command line's ROOT too)
+from ground.gate import (
+    gate,
+    make_folder,
+    remove,
+    runs_folder,  # noqa: F401 (the command line's too)
+    write_text,
+)
+from ground.paths import ROOT  # noqa: F401 (the command line's ROOT too)
 
 from .folders import (
     SET_ASIDE,

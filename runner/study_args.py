@@ -11,9 +11,9 @@ from pathlib import Path
 from builder.materials import calibrated
 from builder.scene import speed_warning
 from ground.errors import InputError
+from ground.gate import runs_folder
 from ground.launch import STYLE_LIBRARIES
 from ground.paths import ROOT as LAMMPS_ROOT
-from ground.paths import runs_folder
 
 from .options import RUN_OPTIONS, on_ranks
 from .study import EXTENDABLE, STUDY_SCENE, Study

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from ground.checks import require_out_folder
 from ground.errors import InputError
-from ground.paths import runs_folder
+from ground.gate import runs_folder
 
 from .studies import all_studies, built_in_pages, require_page
 from .study import ROOT

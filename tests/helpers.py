@@ -15,7 +15,7 @@ from pathlib import Path
 from ground.paths import ROOT
 
 # The tests' studies and runs go into a temporary folder of their own, never
-# into the clone's runs/ (ground.paths.runs_folder reads it, and the commands
+# into the clone's runs/ (ground.gate.runs_folder reads it, and the commands
 # the tests start inherit it); conftest.py removes it at the end.
 RUNS = Path(tempfile.mkdtemp(prefix="impact-test-runs-"))
 os.environ["IMPACT_RUNS"] = str(RUNS)

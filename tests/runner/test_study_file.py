@@ -236,7 +236,7 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
     whose wall_ka column tells them apart."""
     import csv
 
-    from ground.paths import runs_folder
+    from ground.gate import runs_folder
 
     path = tmp_path / "axis_probe.toml"
     path.write_text(
