@@ -9,6 +9,7 @@ lattice itself.
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -17,6 +18,7 @@ from scipy.stats import qmc
 
 from ground.errors import BuildError, InputError
 
+from . import nested
 from .geometry import Polyline, inside_polygon
 from .network import triangulate_body, unique_edges
 from .profile import Profile
@@ -61,6 +63,9 @@ class Body:
     # exactly, as the constrained Delaunay triangulation of its outline
     # (``network.triangulate_body``). Empty for almost every body.
     steep: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), int))
+    # A random body's Poisson sample before the clearance cut its interior from
+    # it: what a nested finer level grows from (``nested``); None otherwise.
+    candidates: np.ndarray | None = None
 
 
 def triangular_spacing(density: float) -> float:
@@ -79,17 +84,22 @@ def lattice_spacing(lattice: str, density: float) -> float:
     return triangular_spacing(density)
 
 
-def poisson_points(rng: np.random.Generator, spacing: float, lower, upper) -> np.ndarray:
+def poisson_points(
+    rng: np.random.Generator, spacing: float, lower, upper, coarse: np.ndarray | None = None
+) -> np.ndarray:
     """Points with a minimum distance, filling a box at the density of ``spacing``
-    (scipy's Poisson-disk sampler; kept in ``sample_cache``)."""
+    (scipy's Poisson-disk sampler; kept in ``sample_cache``), or with
+    ``coarse``, a coarser level's points, grown from them (``nested.grow``)."""
     density = 2.0 / (np.sqrt(3.0) * spacing**2)
     radius = np.sqrt(POISSON_FILL / density)
     arguments = {"radius": float(radius), "lower": list(map(float, lower))}
     arguments["upper"] = list(map(float, upper))
+    if coarse is not None:
+        arguments["coarse"] = hashlib.sha256(np.ascontiguousarray(coarse).tobytes()).hexdigest()
 
     def draw() -> np.ndarray:
         sampler = qmc.PoissonDisk(d=2, radius=radius, seed=rng, l_bounds=lower, u_bounds=upper)
-        return sampler.fill_space()
+        return sampler.fill_space() if coarse is None else nested.grow(sampler, coarse)
 
     return cached_draw(rng, arguments, draw)
 
@@ -228,6 +238,7 @@ def make_disk(
     regular_surface: str = "band",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
+    coarse: np.ndarray | None = None,
 ) -> Body:
     """A disk of radius 1 centred at the origin.
 
@@ -244,7 +255,8 @@ def make_disk(
     is the lattice's own outermost points (``lattice_surface_disk``).
 
     The readings' draws come after the default's, so a seed keeps its
-    interior and its radial roughness across the readings.
+    interior and its radial roughness across the readings. A random disk's
+    interior grows from ``coarse`` when given (``poisson_points``).
     """
     if lattice not in LATTICES:
         raise InputError(f"lattice must be one of {', '.join(LATTICES)}; got {lattice!r}")
@@ -259,7 +271,7 @@ def make_disk(
     radial = roughness * correlated(rng.standard_normal(n_surface), arc, roughness_length)
 
     if lattice == "random":
-        candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0])
+        candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0], coarse)
     else:
         candidates = regular_points(lattice, spacing, 1.0)
     if surface_row == "random":
@@ -281,7 +293,7 @@ def make_disk(
     points = np.concatenate([surface_points, interior])
     role = np.concatenate([np.full(n_surface, SURFACE), np.full(len(interior), INTERIOR)])
     outline = np.arange(n_surface)
-    return assemble(
+    body = assemble(
         points,
         role,
         outline,
@@ -291,6 +303,8 @@ def make_disk(
         n_regular=len(interior) if lattice != "random" else 0,
         k2_over_k1=k2_over_k1,
     )
+    body.candidates = candidates if lattice == "random" else None
+    return body
 
 
 def random_row_angles(rng: np.random.Generator, spacing: float) -> np.ndarray:
@@ -413,6 +427,7 @@ def random_rectangle(
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
+    coarse: np.ndarray | None = None,
 ):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
@@ -426,7 +441,8 @@ def random_rectangle(
     seed's continuous profiles of x (``profile``). Returns the points, the
     outline in counter-clockwise order, and the indices of the top, right,
     left and bottom rows (sides without the top corners, bottom without its
-    corners).
+    corners), and the Poisson sample the interior was cut from (grown from
+    ``coarse`` when given).
     """
     half = width / 2.0
     n_top = int(round(width / spacing))
@@ -461,7 +477,7 @@ def random_rectangle(
             rows["left"][:-1],
         ]
     )
-    candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
+    candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()], coarse)
     if roughness_direction == "both":  # drawn after the interior, which a seed keeps
         shift = correlated(rng.standard_normal(n_top - 1), step, roughness_length)
         if profiles is not None:
@@ -472,7 +488,7 @@ def random_rectangle(
         rim[1:n_top, 0] = np.clip(inner[order], -edge, edge)
         rim[1:n_top, 1] = top_y[1:-1][order]
     interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
-    return np.concatenate([rim, interior]), outline, rows
+    return np.concatenate([rim, interior]), outline, rows, candidates
 
 
 def make_wall(
@@ -485,6 +501,7 @@ def make_wall(
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
+    coarse: np.ndarray | None = None,
 ) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
@@ -494,8 +511,9 @@ def make_wall(
     point (a rigid wall).
     """
     spacing = triangular_spacing(n_points / (width * height))
-    points, outline, rows = random_rectangle(
-        rng, spacing, width, height, roughness, roughness_direction, roughness_length, profiles
+    readings = (roughness_direction, roughness_length, profiles, coarse)
+    points, outline, rows, candidates = random_rectangle(
+        rng, spacing, width, height, roughness, *readings
     )
     top = rows["top"]
     role = np.full(len(points), INTERIOR)
@@ -507,6 +525,7 @@ def make_wall(
         role[rows["bottom"]] = FIXED
     body = assemble(points, role, top, outline, spacing)
     body.held = role == FIXED
+    body.candidates = candidates
     if fixed == "all":
         body.held[:] = True
     return body
