@@ -34,7 +34,7 @@ import numpy as np
 
 from ground.errors import InputError
 
-from . import bodies
+from . import bodies, profile
 from .aim import aim_turned, first_contact, hits, place_projectile, stand_off, turned
 from .bodies import SURFACE, Body
 from .materials import spring_constant
@@ -116,7 +116,7 @@ def surface_ring(spec: SceneSpec, spacing: float) -> Body:
     n = int(round(2.0 * np.pi * SURFACE_RADIUS / spacing))
     arc = 2.0 * np.pi * SURFACE_RADIUS / n
     rng = np.random.default_rng(sample_seeds(spec.seed)[2])
-    radial = spec.roughness * bodies.correlated(rng.standard_normal(n), arc, spec.roughness_length)
+    radial = spec.roughness * profile.correlated(rng.standard_normal(n), arc, spec.roughness_length)
     angle = 2.0 * np.pi * np.arange(n) / n
     points = (SURFACE_RADIUS + radial)[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
     return Body(

@@ -9,7 +9,6 @@ lattice itself.
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,10 +17,9 @@ from scipy.stats import qmc
 
 from ground.errors import BuildError, InputError
 
-from . import nested
 from .geometry import Polyline, inside_polygon
 from .network import triangulate_body, unique_edges
-from .profile import Profile
+from .profile import Profile, correlated
 from .sample_cache import cached_draw
 
 # Roles of the points of a body. A FIXED point is held in place and is not part
@@ -63,9 +61,6 @@ class Body:
     # exactly, as the constrained Delaunay triangulation of its outline
     # (``network.triangulate_body``). Empty for almost every body.
     steep: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), int))
-    # A random body's Poisson sample before the clearance cut its interior from
-    # it: what a nested finer level grows from (``nested``); None otherwise.
-    candidates: np.ndarray | None = None
 
 
 def triangular_spacing(density: float) -> float:
@@ -84,22 +79,17 @@ def lattice_spacing(lattice: str, density: float) -> float:
     return triangular_spacing(density)
 
 
-def poisson_points(
-    rng: np.random.Generator, spacing: float, lower, upper, coarse: np.ndarray | None = None
-) -> np.ndarray:
+def poisson_points(rng: np.random.Generator, spacing: float, lower, upper) -> np.ndarray:
     """Points with a minimum distance, filling a box at the density of ``spacing``
-    (scipy's Poisson-disk sampler; kept in ``sample_cache``), or with
-    ``coarse``, a coarser level's points, grown from them (``nested.grow``)."""
+    (scipy's Poisson-disk sampler; kept in ``sample_cache``)."""
     density = 2.0 / (np.sqrt(3.0) * spacing**2)
     radius = np.sqrt(POISSON_FILL / density)
     arguments = {"radius": float(radius), "lower": list(map(float, lower))}
     arguments["upper"] = list(map(float, upper))
-    if coarse is not None:
-        arguments["coarse"] = hashlib.sha256(np.ascontiguousarray(coarse).tobytes()).hexdigest()
 
     def draw() -> np.ndarray:
         sampler = qmc.PoissonDisk(d=2, radius=radius, seed=rng, l_bounds=lower, u_bounds=upper)
-        return sampler.fill_space() if coarse is None else nested.grow(sampler, coarse)
+        return sampler.fill_space()
 
     return cached_draw(rng, arguments, draw)
 
@@ -202,31 +192,6 @@ REGULAR_SURFACES = ("band", "lattice")
 ROW_MIN_DISTANCE = 0.67
 
 
-def correlated(noise: np.ndarray, spacing: float, length: float) -> np.ndarray:
-    """White noise along an evenly spaced periodic row made a Gaussian random
-    profile with correlation length ``length`` (both in the row's units).
-
-    The profile's covariance between points a distance s apart along the row
-    is exp(-s^2 / (2 length^2)) (unit variance), wrapped around the row's
-    period, which is the same profile at any spacing: its slopes do not grow
-    as the row is refined, unlike independent draws per point (docs/model.md,
-    "The model as the resolution grows"). The covariance of an evenly spaced
-    periodic row is circulant, so its eigenvalues are the FFT of its first row
-    and ``noise`` filtered by their square roots has exactly that covariance
-    (circulant embedding). ``length`` 0 gives ``noise`` itself.
-    """
-    if length == 0.0:
-        return noise
-    n = len(noise)
-    period = n * spacing
-    lag = np.minimum(np.arange(n), n - np.arange(n)) * spacing
-    # the Gaussian wrapped around the period: images up to 4 periods away
-    images = lag[:, None] + period * np.arange(-4, 5)[None, :]
-    covariance = np.exp(-0.5 * (images / length) ** 2).sum(axis=1)
-    eigenvalues = np.clip(np.fft.rfft(covariance).real, 0.0, None)
-    return np.fft.irfft(np.sqrt(eigenvalues) * np.fft.rfft(noise), n)
-
-
 def make_disk(
     rng: np.random.Generator,
     lattice: str = "random",
@@ -238,7 +203,6 @@ def make_disk(
     regular_surface: str = "band",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
-    coarse: np.ndarray | None = None,
 ) -> Body:
     """A disk of radius 1 centred at the origin.
 
@@ -255,8 +219,7 @@ def make_disk(
     is the lattice's own outermost points (``lattice_surface_disk``).
 
     The readings' draws come after the default's, so a seed keeps its
-    interior and its radial roughness across the readings. A random disk's
-    interior grows from ``coarse`` when given (``poisson_points``).
+    interior and its radial roughness across the readings.
     """
     if lattice not in LATTICES:
         raise InputError(f"lattice must be one of {', '.join(LATTICES)}; got {lattice!r}")
@@ -271,7 +234,7 @@ def make_disk(
     radial = roughness * correlated(rng.standard_normal(n_surface), arc, roughness_length)
 
     if lattice == "random":
-        candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0], coarse)
+        candidates = poisson_points(rng, spacing, [-1.0, -1.0], [1.0, 1.0])
     else:
         candidates = regular_points(lattice, spacing, 1.0)
     if surface_row == "random":
@@ -293,7 +256,7 @@ def make_disk(
     points = np.concatenate([surface_points, interior])
     role = np.concatenate([np.full(n_surface, SURFACE), np.full(len(interior), INTERIOR)])
     outline = np.arange(n_surface)
-    body = assemble(
+    return assemble(
         points,
         role,
         outline,
@@ -303,8 +266,6 @@ def make_disk(
         n_regular=len(interior) if lattice != "random" else 0,
         k2_over_k1=k2_over_k1,
     )
-    body.candidates = candidates if lattice == "random" else None
-    return body
 
 
 def random_row_angles(rng: np.random.Generator, spacing: float) -> np.ndarray:
@@ -427,7 +388,6 @@ def random_rectangle(
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
-    coarse: np.ndarray | None = None,
 ):
     """A random-lattice rectangle, x in [-width/2, width/2], y in [-height, 0].
 
@@ -441,8 +401,7 @@ def random_rectangle(
     seed's continuous profiles of x (``profile``). Returns the points, the
     outline in counter-clockwise order, and the indices of the top, right,
     left and bottom rows (sides without the top corners, bottom without its
-    corners), and the Poisson sample the interior was cut from (grown from
-    ``coarse`` when given).
+    corners).
     """
     half = width / 2.0
     n_top = int(round(width / spacing))
@@ -477,7 +436,7 @@ def random_rectangle(
             rows["left"][:-1],
         ]
     )
-    candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()], coarse)
+    candidates = poisson_points(rng, spacing, [-half, -height], [half, top_y.max()])
     if roughness_direction == "both":  # drawn after the interior, which a seed keeps
         shift = correlated(rng.standard_normal(n_top - 1), step, roughness_length)
         if profiles is not None:
@@ -488,7 +447,7 @@ def random_rectangle(
         rim[1:n_top, 0] = np.clip(inner[order], -edge, edge)
         rim[1:n_top, 1] = top_y[1:-1][order]
     interior = keep_clear(candidates, rim[outline], CLEARANCE * spacing)
-    return np.concatenate([rim, interior]), outline, rows, candidates
+    return np.concatenate([rim, interior]), outline, rows
 
 
 def make_wall(
@@ -501,7 +460,6 @@ def make_wall(
     roughness_direction: str = "normal",
     roughness_length: float = 0.0,
     profiles: tuple[Profile, Profile] | None = None,
-    coarse: np.ndarray | None = None,
 ) -> Body:
     """A random-lattice wall, ``width`` by ``height``, whose top face is at y = 0.
 
@@ -511,9 +469,8 @@ def make_wall(
     point (a rigid wall).
     """
     spacing = triangular_spacing(n_points / (width * height))
-    readings = (roughness_direction, roughness_length, profiles, coarse)
-    points, outline, rows, candidates = random_rectangle(
-        rng, spacing, width, height, roughness, *readings
+    points, outline, rows = random_rectangle(
+        rng, spacing, width, height, roughness, roughness_direction, roughness_length, profiles
     )
     top = rows["top"]
     role = np.full(len(points), INTERIOR)
@@ -525,7 +482,6 @@ def make_wall(
         role[rows["bottom"]] = FIXED
     body = assemble(points, role, top, outline, spacing)
     body.held = role == FIXED
-    body.candidates = candidates
     if fixed == "all":
         body.held[:] = True
     return body

@@ -1,7 +1,8 @@
-"""One rough surface per seed at every resolution: a Gaussian random profile
-as a continuous function of arc length.
+"""The rough surfaces' Gaussian random profiles: sampled at a row's points
+(``correlated``), or one surface per seed at every resolution, a continuous
+function of arc length (``Profile``).
 
-``bodies.correlated`` filters white noise drawn at a row's points, so a finer
+``correlated`` filters white noise drawn at a row's points, so a finer
 row is a new draw: the disk at 800 and at 3,200 points of one seed have
 unrelated surfaces. Here the profile is a Fourier series whose coefficients
 come from the seed's own stream and whose number of modes depends on the
@@ -10,7 +11,7 @@ resolution samples the same function, and the differences between
 resolutions are coupled (multilevel Monte Carlo, docs/model.md, "The model
 as the resolution grows").
 
-The covariance is that of ``bodies.correlated``: exp(-s^2 / (2 L^2)) between
+The covariance is that of ``correlated``: exp(-s^2 / (2 L^2)) between
 points a distance s apart, wrapped around the period P. Its Fourier series
 has the coefficients c_m = S(k_m) / P at k_m = 2 pi m / P, S(k) = L sqrt(2 pi)
 exp(-k^2 L^2 / 2) the Gaussian's transform, so the sum of cos and sin modes
@@ -92,3 +93,28 @@ def wall_profiles(seed: int, length: float, width: float) -> tuple[Profile, Prof
     period the width): heights, then shifts along x."""
     children = profile_stream(seed, WALL_PROFILE_STREAM).spawn(2)
     return tuple(draw_profile(child, width, length) for child in children)
+
+
+def correlated(noise: np.ndarray, spacing: float, length: float) -> np.ndarray:
+    """White noise along an evenly spaced periodic row made a Gaussian random
+    profile with correlation length ``length`` (both in the row's units).
+
+    The profile's covariance between points a distance s apart along the row
+    is exp(-s^2 / (2 length^2)) (unit variance), wrapped around the row's
+    period, which is the same profile at any spacing: its slopes do not grow
+    as the row is refined, unlike independent draws per point (docs/model.md,
+    "The model as the resolution grows"). The covariance of an evenly spaced
+    periodic row is circulant, so its eigenvalues are the FFT of its first row
+    and ``noise`` filtered by their square roots has exactly that covariance
+    (circulant embedding). ``length`` 0 gives ``noise`` itself.
+    """
+    if length == 0.0:
+        return noise
+    n = len(noise)
+    period = n * spacing
+    lag = np.minimum(np.arange(n), n - np.arange(n)) * spacing
+    # the Gaussian wrapped around the period: images up to 4 periods away
+    images = lag[:, None] + period * np.arange(-4, 5)[None, :]
+    covariance = np.exp(-0.5 * (images / length) ** 2).sum(axis=1)
+    eigenvalues = np.clip(np.fft.rfft(covariance).real, 0.0, None)
+    return np.fft.irfft(np.sqrt(eigenvalues) * np.fft.rfft(noise), n)

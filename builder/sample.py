@@ -8,7 +8,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import bodies, nested, profile
+from . import bodies, profile
 from .bodies import Body
 from .scene import SceneSpec
 
@@ -26,7 +26,6 @@ def sample_disk(spec: SceneSpec) -> Body:
         spec.regular_surface,
         spec.roughness_length,
         spec.roughness_profile,
-        spec.interior,
     )
 
 
@@ -58,7 +57,6 @@ def build_bodies(spec: SceneSpec) -> tuple[Body, Body]:
             spec.roughness_direction,
             spec.roughness_length,
             spec.roughness_profile,
-            spec.interior,
         ),
     )
 
@@ -72,32 +70,18 @@ def sample_seeds(seed: int) -> tuple[np.random.SeedSequence, ...]:
 
 @lru_cache(maxsize=8)
 def _disk(lattice, seed, n_disk, roughness, k2_over_k1, *readings) -> Body:
-    *readings, length, kind, interior = readings
-    coarse = None
-    half = nested.coarser_level(n_disk, nested.BASE_N_DISK)
-    if interior == "nested" and lattice == "random" and half is not None:
-        coarse = _disk(
-            lattice, seed, half, roughness, k2_over_k1, *readings, length, kind, interior
-        ).candidates
+    *readings, length, kind = readings
     rng = np.random.default_rng(sample_seeds(seed)[0])
     profiles = profile.disk_profiles(seed, length) if kind == "continuous" else None
     return bodies.make_disk(
-        rng, lattice, n_disk, roughness, k2_over_k1, *readings, length, profiles, coarse
+        rng, lattice, n_disk, roughness, k2_over_k1, *readings, length, profiles
     )
 
 
-@lru_cache(maxsize=8)
-def _wall(
-    seed, n_wall, width, height, roughness, wall_fixed, direction, length, kind, interior
-) -> Body:
-    coarse = None
-    half = nested.coarser_level(n_wall, 2 * nested.BASE_N_DISK)
-    if interior == "nested" and half is not None:
-        coarse = _wall(
-            seed, half, width, height, roughness, wall_fixed, direction, length, kind, interior
-        ).candidates
+@lru_cache(maxsize=4)
+def _wall(seed, n_wall, width, height, roughness, wall_fixed, direction, length, kind) -> Body:
     rng = np.random.default_rng(sample_seeds(seed)[1])
     profiles = profile.wall_profiles(seed, length, width) if kind == "continuous" else None
     return bodies.make_wall(
-        rng, n_wall, width, height, roughness, wall_fixed, direction, length, profiles, coarse
+        rng, n_wall, width, height, roughness, wall_fixed, direction, length, profiles
     )

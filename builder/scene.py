@@ -87,14 +87,9 @@ ROUGHNESS_LENGTH = Range(0.005, 1.0, unit="R, or 0: each point on its own")
 # elastic modulus (``contact_energy``), so that only the sampling changes with N.
 CONTACT_SCALINGS = ("spacing", "fixed", "physical")
 # The rough surface: "sampled" at the row's points, a new draw at every
-# resolution (``bodies.correlated``); "continuous", one profile per seed, the
+# resolution (``profile.correlated``); "continuous", one profile per seed, the
 # same function of arc length at every resolution (builder/profile.py).
 ROUGHNESS_PROFILES = ("sampled", "continuous")
-# The random interiors (the random disk's and the wall's): "drawn" anew at
-# every resolution; "nested", a finer level's Poisson sample grown from the
-# level of half its points, from the 800-point disk's up (builder/nested.py;
-# experimental: docs/benchmarks/nested_interiors.md).
-INTERIORS = ("drawn", "nested")
 # The disk at which every setting that follows the resolution is the paper's.
 REFERENCE_N_DISK = 800
 # The contact's cutoff with contact_scaling "physical": the paper's, the wall
@@ -224,10 +219,6 @@ SCENE_OPTIONS = (
            "points, anew at every n_disk; continuous: one profile of correlation length "
            "roughness_length per seed, the same surface at every n_disk (docs/model.md, 'The "
            "model as the resolution grows')", words=ROUGHNESS_PROFILES, applies="wall",
-           made_by="changed"),
-    Option("interior", "drawn", "drawn: the random interiors drawn anew at every n_disk; "
-           "nested (experimental): grown from those of half the points, from 800 up "
-           "(docs/benchmarks/nested_interiors.md)", words=INTERIORS, applies="wall",
            made_by="changed"),
     Option("contact_scaling", "spacing", "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
            "times sqrt(800 / n_disk), the contact's energy per length of surface held; fixed: a "

@@ -116,7 +116,7 @@ def make_strip(spec: StripSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     spec.validate()
     if spec.lattice == "random":
         rng = np.random.default_rng(np.random.SeedSequence(spec.seed).spawn(1)[0])
-        points, outline, _, _ = bodies.random_rectangle(rng, 1.0, spec.length, spec.width)
+        points, outline, _ = bodies.random_rectangle(rng, 1.0, spec.length, spec.width)
         points = points + [0.0, spec.width / 2.0]
         body = bodies.assemble(points, np.zeros(len(points), int), outline, outline, 1.0)
         return points, body.springs, body.stiffness

@@ -1,9 +1,9 @@
-"""The roughness as a profile of fixed correlation length (builder.bodies.correlated)."""
+"""The roughness as a profile of fixed correlation length (builder.profile.correlated)."""
 
 import numpy as np
 import pytest
 
-from builder import bodies
+from builder import profile
 from builder.sample import build_bodies
 from builder.scene import SceneSpec
 
@@ -22,13 +22,13 @@ def covariance(n: int, spacing: float, length: float) -> np.ndarray:
 def test_the_filter_has_the_profiles_covariance(n, spacing, length):
     # the filter applied to each unit vector is a matrix M with M M^T = C,
     # the covariance written out pair by pair: two computations agreeing
-    filter_matrix = np.stack([bodies.correlated(e, spacing, length) for e in np.eye(n)], axis=1)
+    filter_matrix = np.stack([profile.correlated(e, spacing, length) for e in np.eye(n)], axis=1)
     assert np.allclose(filter_matrix @ filter_matrix.T, covariance(n, spacing, length), atol=1e-10)
 
 
 def test_zero_length_is_the_draw_per_point():
     noise = np.random.default_rng(3).standard_normal(50)
-    assert bodies.correlated(noise, 0.1, 0.0) is noise
+    assert profile.correlated(noise, 0.1, 0.0) is noise
 
 
 def test_slopes_follow_the_length_not_the_spacing():
@@ -37,10 +37,10 @@ def test_slopes_follow_the_length_not_the_spacing():
     rng = np.random.default_rng(1)
     for n in (400, 1600):
         spacing = 2 * np.pi / n
-        profile = np.stack(
-            [bodies.correlated(rng.standard_normal(n), spacing, 0.048) for _ in range(200)]
+        rows = np.stack(
+            [profile.correlated(rng.standard_normal(n), spacing, 0.048) for _ in range(200)]
         )
-        slope = np.diff(profile, axis=1) / spacing
+        slope = np.diff(rows, axis=1) / spacing
         assert np.sqrt((slope**2).mean()) == pytest.approx(1 / 0.048, rel=0.05)
 
 
@@ -49,12 +49,12 @@ def test_a_correlated_disk_filters_the_seeds_own_draw():
     disk = build_bodies(SceneSpec(seed=4))[0]
     smooth = build_bodies(SceneSpec(seed=4, roughness_length=0.048))[0]
     radial = np.hypot(*disk.points[disk.surface].T) - 1.0
-    profile = np.hypot(*smooth.points[smooth.surface].T) - 1.0
+    heights = np.hypot(*smooth.points[smooth.surface].T) - 1.0
     arc = 2 * np.pi / len(radial)
-    expected = 0.03 * bodies.correlated(radial / 0.03, arc, 0.048)
-    assert np.allclose(profile, expected, atol=1e-12)
+    expected = 0.03 * profile.correlated(radial / 0.03, arc, 0.048)
+    assert np.allclose(heights, expected, atol=1e-12)
     # neighbours are correlated: their differences are smaller than independent ones'
-    assert np.std(np.diff(profile)) < 0.8 * np.std(np.diff(radial))
+    assert np.std(np.diff(heights)) < 0.8 * np.std(np.diff(radial))
 
 
 def test_uneven_rows_are_refused():
