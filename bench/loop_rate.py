@@ -109,7 +109,7 @@ def parser() -> argparse.ArgumentParser:
         help=f"MPI ranks of each impact, each {NPROCS.describe()} (default: 1 2)",
     )  # fmt: skip
     parser.add_argument(
-        "--two-rank-sizes", type=SIZE, nargs="*", default=None,
+        "--two-rank-sizes", type=SIZE, nargs="+", default=None,
         help="the sizes run on more than one rank, among --sizes (default: all of them)",
     )  # fmt: skip
     add_repeats(parser, 3, "runs of each setting and rank count, interleaved")

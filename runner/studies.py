@@ -67,11 +67,14 @@ def committed_studies() -> list[str]:
     return sorted(Path(p).stem for p in committed(STUDIES) if p.endswith(".toml"))
 
 
-def require_page(described: StudyFile, page: str, *also: str) -> None:
+def require_page(described: StudyFile, page: str, *also: str) -> list[str]:
     """Let ``described`` write docs/<page>.md, docs/<page>/ and
     docs/figures/<page>/ (and the same of the pages ``also``, which its page
     tabulates) if the page is its own (builder.outputs.require_own_page), by
-    opening the one gate of every write (ground.gate) to them.
+    opening the one gate of every write (ground.gate) to them. A page of
+    ``also`` that is another committed study's own page (the paper's
+    results, which the binary page tabulates) is read, never written: it is
+    neither granted nor refused. Returns the pages granted.
 
     Raises
     ------
@@ -85,10 +88,13 @@ def require_page(described: StudyFile, page: str, *also: str) -> None:
     path = described.path
     own = STUDIES / f"{name}.toml"
     committed_file = path is not None and path.resolve() == own.resolve() and name in tracked
+    granted_pages = []
     for each in (page, *also):
         # a page's owner is the file whose page it is; a reading's (tables a
         # page tabulates, with no page of their own) the file that names it
         owners = [n for n in sorted(tracked) if n in files and files[n].page == each]
+        if each != page and owners and name not in owners:
+            continue  # another study's own page: only read
         owners = owners or [n for n in sorted(tracked) if n in files and each in files[n].readings]
         naming = [
             n
@@ -105,3 +111,7 @@ def require_page(described: StudyFile, page: str, *also: str) -> None:
         where = str(path) if path else name
         require_own_page(where, name, each, owners, naming, committed_file, made_by)
         grant(DOCS / f"{each}.md", DOCS / each, DOCS / "figures" / each)
+        if each == "results":  # the paper's page keeps its figures in docs/figures/ itself
+            grant(DOCS / "figures")
+        granted_pages.append(each)
+    return granted_pages

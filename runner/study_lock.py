@@ -89,7 +89,8 @@ def study_lock(folder: Path, wait: bool = False) -> Iterator[None]:
             del _held[key]
     finally:
         # a run refused before any work leaves no folder: the study's name stays free
-        if key in _made and [p.name for p in folder.iterdir()] == [LOCK]:
+        # (the driver may have removed it already, for the same reason)
+        if key in _made and folder.is_dir() and [p.name for p in folder.iterdir()] == [LOCK]:
             (folder / LOCK).unlink()
             folder.rmdir()
         _made.discard(key)

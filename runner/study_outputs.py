@@ -156,8 +156,9 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
     preset = described.study.name
     if not described.page:
         raise InputError(f"the {preset} study has no page in docs/ (its file's page)")
+    own = [described.page, *described.readings]
     if out is None:
-        require_page(described, described.page, *described.readings)
+        own = require_page(described, described.page, *described.readings)
     if described.kind in READINGS_KINDS:
         return remake_readings_page(preset, described, out)
     tables = DOCS / described.page
@@ -171,8 +172,9 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
                 f"(python -m runner study {preset} --name {name} --docs makes them)"
             )
     if out is None:
-        for folder in readings.values():
-            tidy_tables(folder)
+        for name, folder in readings.items():
+            if name in own:  # another study's own tables are its to tidy
+                tidy_tables(folder)
     page = (out or DOCS) / f"{described.page}.md"
     report_from_tables(
         tables,
