@@ -166,7 +166,7 @@ paper: setup
 	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
 test: setup setup-pypi $(STAMPS)/debian-test
-	$(PYTHON) -m pytest -q -rs tests
+	$(PYTHON) -m pytest -q -rs --durations=25 tests
 
 # The developers' loop: what is not marked slow (pytest.ini's markers).
 test-quick: setup setup-pypi

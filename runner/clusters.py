@@ -142,7 +142,11 @@ def make_cluster(spec: ClusterSpec):
             n_workers=spec.size(),
             threads_per_worker=1,
             processes=True,
-            silence_logs=logging.ERROR,
+            # CRITICAL, not ERROR: on a signal the scheduler in this process
+            # closes first, and a worker's heartbeat racing it logged a
+            # traceback at ERROR into the study's one-line stderr; an
+            # impact's own failure comes back through its future anyway
+            silence_logs=logging.CRITICAL,
             dashboard_address=":8787",  # or a free port, if that one is taken
         )
     from dask_jobqueue import SLURMCluster
