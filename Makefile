@@ -155,7 +155,7 @@ build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian
 	@mkdir -p build
 	gcc -O2 -fPIC -shared -Wall $< -o $@ -lm
 
-# The study (runner/study.py): tables, fits and figures in runs/<name>/.
+# The study (runner/study/__init__.py): tables, fits and figures in runs/<name>/.
 # Killed, it resumes where it stopped. STUDY_ARGS passes options, e.g.
 # make paper STUDY_ARGS="--workers 8" or STUDY_ARGS="--cluster slurm --jobs 4
 # --cores-per-job 16" (docs/cluster.md).

@@ -13,8 +13,8 @@ from ground.errors import InputError
 from ground.gate import gate
 
 from . import speed
-from .failures import impact_state, state_of
-from .result import BINARY_FINITE, FINITE
+from .impact.failures import impact_state, state_of
+from .impact.result import BINARY_FINITE, FINITE
 from .table import (
     MEAN_COLUMNS,
     TIMING_COLUMNS,
@@ -43,7 +43,7 @@ def read_failure(job: dict) -> dict:
 
 
 # failed.csv: the impacts without a result; state: failed (the run did not go
-# as asked) or stuck (the disk had not left the wall by tmax: analysis.failures)
+# as asked) or stuck (the disk had not left the wall by tmax: analysis.impact.failures)
 FAILED_COLUMNS = ("lattice", "seed", "gamma", "vn", "state", "error")
 
 

@@ -36,7 +36,7 @@ from ground.gate import runs_folder
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes
-from runner.clusters import WORKERS
+from runner.cluster.workers import WORKERS
 from runner.impact import run_scene
 from runner.options import RunOptions
 

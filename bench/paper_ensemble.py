@@ -7,7 +7,7 @@ order) changes every rough impact's digits, and the contact's chaos grows
 them: e and beta of one impact are then not comparable, their ensembles are.
 For every lattice and angle of docs/results/impacts.csv (or --after's), the
 paired difference of e and beta over the seeds both runs finished, against
-the same table at the git revision --before (analysis/ensemble.py).
+the same table at the git revision --before (analysis/statistics/ensemble.py).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 
-from analysis.ensemble import impact_differences, paired_differences, summary
+from analysis.statistics.ensemble import impact_differences, paired_differences, summary
 from bench.common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError

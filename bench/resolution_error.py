@@ -6,19 +6,19 @@
 No runs: it reads the committed rows (docs/resolution_profile/rows.csv) and
 each impact's LAMMPS seconds (timings.csv), reading ``profile`` on the random
 disk. For e near normal incidence (e_normal) and Walton's mu (measured way),
-the limit Q_limit is analysis.resolution.limits over every level. Three
+the limit Q_limit is analysis.kinds.resolution.limits over every level. Three
 estimates at each finest level N, each with its error against Q_limit,
 sqrt(bias^2 + stat^2), and the seconds actually spent on the levels it uses:
 
 (a) one resolution alone: Q(N) with its seed error; the seconds of level N;
-(b) the extrapolation: analysis.extrapolation.limit of the levels 800..N
+(b) the extrapolation: analysis.statistics.extrapolation.limit of the levels 800..N
     (its statistical error; the forms' band is a column of its own);
 (c) the multilevel estimate: Q(800) + the per-seed differences paired by
-    seed and angle up to N (analysis.levels.coupled_differences), its error
+    seed and angle up to N (analysis.statistics.levels.coupled_differences), its error
     the terms' errors summed in quadrature; e only (mu, a fit over the
     angles, has no per-seed value); the seconds of the levels 800..N.
 
-For a target error T (analysis.resolution.TARGETS) the time needed scales the
+For a target error T (analysis.kinds.resolution.TARGETS) the time needed scales the
 seeds of every level used: stat ~ 1 / sqrt(seeds), so the time is
 seconds * stat^2 / (T^2 - bias^2), and "never" where |bias| >= T.
 """
@@ -29,7 +29,8 @@ import csv
 import math
 from pathlib import Path
 
-from analysis import extrapolation, levels, resolution
+from analysis.kinds import resolution
+from analysis.statistics import extrapolation, levels
 from bench.common import bench_parser, markdown_table, page_folder, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.result import MAX_DRIFT
+from analysis.impact.result import MAX_DRIFT
 from bench.common import (
     bench_parser,
     loop_seconds,
@@ -77,7 +77,8 @@ DRIFT_NOTE = (
     "**The accuracy guard.** Every result.json records its energy drift (the change of the "
     "total energy over the initial kinetic energy) and is flagged (`drift_exceeded`, also a "
     f"column of impacts.csv) when it exceeds `--max-drift`, default {MAX_DRIFT:g} "
-    "(`analysis.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, naming dt."
+    "(`analysis.impact.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, "
+    "naming dt."
     " **What sets the drift on rough scenes** ([drift_floor.md](drift_floor.md), `python "
     "bench/drift_floor.py --docs`): not the lever rule, which is the exact gradient of "
     "V0 exp(-a l) (docs/contact.md), but the kinks of l over the rough wall's valley "

@@ -10,7 +10,7 @@ import numpy as np
 
 from analysis import binary_comparison
 from analysis.binary_comparison import DIFFERENT, SAME, THIS_STUDY
-from analysis.estimates import CHI2_LIMIT
+from analysis.statistics.estimates import CHI2_LIMIT
 
 from .render import macro
 

@@ -21,7 +21,7 @@ from types import ModuleType
 from analysis import speed, study_numbers
 from analysis.grazing import has_grazing_angles, readings_numbers
 from analysis.kinds import READINGS_KINDS
-from analysis.readings import Setup, read_record, read_rows
+from analysis.kinds.readings import Setup, read_record, read_rows
 from analysis.study_tables import read_tables
 from analysis.table import MEAN_COLUMNS, rounded, write_csv
 from ground.gate import gate, make_folder

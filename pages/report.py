@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from analysis.failures import failure_causes, genuine
+from analysis.impact.failures import failure_causes, genuine
 from analysis.study_tables import (
     public_record,
     read_failure,

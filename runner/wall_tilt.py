@@ -6,7 +6,7 @@
 From a grazing study's committed tables (runner study grazing), at the angle
 of the largest mean e (or --gamma), the impact with the largest e and the
 one with the smallest are run again, on the study's own scenes and settings
-(runner.study.Study.spec), with a dump. For each, analysis/tilt.py measures
+(runner.study.Study.spec), with a dump. For each, analysis/impact/tilt.py measures
 the tilt that the wall's deformation adds to its surface under the disk,
 frame by frame, its mean over the contact weighted by the contact force,
 and the share of the normal approach speed that this tilt adds from the
@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.tilt import surface_tilt, tilt_effect, tilted_e
+from analysis.impact.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
@@ -35,8 +35,8 @@ from pages.report import shown_path
 from pages.text import markdown_table
 
 from .impact import run_impact
-from .provenance import machine
 from .study import Study, runs_folder
+from .study.provenance import machine
 
 DUMP_EVERY = Range(1, 10_000, integer=True)
 
@@ -194,7 +194,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
         "angle of the largest mean e unless --gamma; the impacts of largest and smallest e "
         "there, run again on the study's scenes and settings with a dump every "
         f"{args.dump_every} steps. Tilt: the slope of the wall surface points' displacement "
-        "within 0.5 R of the disk centre's x (analysis/tilt.py), positive where the surface "
+        "within 0.5 R of the disk centre's x (analysis/impact/tilt.py), positive where the surface "
         "rises in +x, ahead of the disk. Force-weighted: its mean over the contact weighted "
         "by the disk's wall-normal contact force. tan(gamma) tan(tilt): the share of the "
         "normal approach speed that the tilt adds from the tangential motion (the disk meets "

@@ -4,7 +4,7 @@ The benchmarks are not run by the tests (they time things), so a script
 whose imports broke would otherwise go unnoticed until someone ran it. Each
 answers --help; every bad combination of options exits 2 with one line on
 stderr that names the option, before anything is written into docs/ or
-runs/. Bad values of single options: tests/cli/test_bad_input.py, which covers
+runs/. Bad values of single options: tests/runner/cli/test_bad_input.py, which covers
 the benchmarks with every other entry point.
 """
 

@@ -4,7 +4,7 @@ level's error is sqrt(bias^2 + stat^2) against the limit of every level."""
 import csv
 import math
 
-from analysis import resolution
+from analysis.kinds import resolution
 from bench import resolution_error
 from ground.paths import ROOT
 

@@ -75,7 +75,7 @@ def test_the_default_scene_is_the_chosen_reading():
     spec = SceneSpec()
     chosen = (1600, 10.0, "sides", "disk")
     assert (spec.n_wall, spec.wall_ka, spec.wall_fixed, spec.contact_mass) == chosen
-    from runner.studies import all_studies
+    from runner.study.studies import all_studies
 
     for described in all_studies().values():
         study = described.study

@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from runner.studies import built_in_pages
+from runner.study.studies import built_in_pages
 from tests.helpers import ROOT
 
 DOCS = ROOT / "docs"

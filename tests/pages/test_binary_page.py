@@ -62,7 +62,7 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
     tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
     the same page, but for where it says its files are."""
     from pages.report import report_from_tables
-    from runner.studies import study_file
+    from runner.study.studies import study_file
 
     docs = ROOT / "docs"
     page = tmp_path / "binary_grazing.md"
@@ -82,7 +82,7 @@ def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():
     """K = (1/M_A + 1/M_B + R^2/I_A + R^2/I_B) / (1/M_A + 1/M_B): one disk's
     1 + MR^2/I for two alike; a partner of half the mass and inertia, 1 + (1/rA
     + 2/rB) / 3."""
-    from analysis.estimates import two_body_k
+    from analysis.statistics.estimates import two_body_k
 
     alike = {"n_disk_points": 800, "n_target_points": 800}
     alike.update(disk_inertia_ratio=0.51, target_inertia_ratio=0.51)
@@ -122,7 +122,7 @@ def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
     """Two disks whose measured cot gamma is half the wall's at every angle:
     each target is fitted only at the angles inside the common range."""
     from analysis.binary_comparison import common_range
-    from analysis.seeds import seed_tables
+    from analysis.statistics.seeds import seed_tables
 
     wall = impact_rows("random", WALL_BETA, seeds=6)
     disks = binary(wall, 0.0)

@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from analysis.dump import open_run, rebound_from_dump
+from analysis.impact.dump import open_run, rebound_from_dump
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
