@@ -2,7 +2,7 @@
 comparison, in numbers (its page section and figures: pages.binary).
 
 The binary study's seeds and angles are those of a wall study (the paper's,
-docs/results/): a seed's disk is the same in both (builder/binary.py), so
+docs/studies/results/): a seed's disk is the same in both (builder/binary.py), so
 each seed gives a pair of impacts, and every error resamples whole seeds of
 both studies together (analysis.statistics.seeds).
 """
@@ -88,9 +88,9 @@ def normal_checks(
     impacts of this study's seeds and angles."""
     checks = {THIS_STUDY: robustness(rows, resamples)}
     for name, pair in pairs.items():
-        checks[f"two disks, docs/{name}"] = robustness(pair, resamples)
+        checks[f"two disks, docs/studies/{name}"] = robustness(pair, resamples)
     for name, wall in walls.items():
-        checks[f"the wall, docs/{name}"] = robustness(paired_rows(rows, wall)[1], resamples)
+        checks[f"the wall, docs/studies/{name}"] = robustness(paired_rows(rows, wall)[1], resamples)
     return checks
 
 

@@ -5,7 +5,7 @@
 A change that only reorders LAMMPS's sums (another neighbour list or atom
 order) changes every rough impact's digits, and the contact's chaos grows
 them: e and beta of one impact are then not comparable, their ensembles are.
-For every lattice and angle of docs/results/impacts.csv (or --after's), the
+For every lattice and angle of docs/studies/results/impacts.csv (or --after's), the
 paired difference of e and beta over the seeds both runs finished, against
 the same table at the git revision --before (analysis/statistics/ensemble.py).
 """
@@ -25,7 +25,7 @@ from bench.common import ROOT, bench_parser, file_at, markdown_table, refuse, wr
 from ground.checks import InPath
 from ground.errors import InputError
 
-TABLE = "docs/results/impacts.csv"
+TABLE = "docs/studies/results/impacts.csv"
 WITHIN = 2.0  # standard errors
 
 

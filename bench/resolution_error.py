@@ -3,7 +3,7 @@
     python bench/resolution_error.py --docs
     python bench/resolution_error.py [--rows CSV] [--timings CSV] [--out FOLDER] [--docs]
 
-No runs: it reads the committed rows (docs/resolution_profile/rows.csv) and
+No runs: it reads the committed rows (docs/studies/resolution_profile/rows.csv) and
 each impact's LAMMPS seconds (timings.csv), reading ``profile`` on the random
 disk. For e near normal incidence (e_normal) and Walton's mu (measured way),
 the limit Q_limit is analysis.kinds.resolution.limits over every level. Three
@@ -34,9 +34,9 @@ from analysis.statistics import extrapolation, levels
 from bench.common import bench_parser, markdown_table, page_folder, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError
-from ground.paths import ROOT
+from ground.paths import study_docs
 
-TABLES = ROOT / "docs" / "resolution_profile"
+TABLES = study_docs("resolution_profile")
 READING, LATTICE = "profile", "random"
 QUANTITIES = ("e_normal", "mu")
 
@@ -155,7 +155,7 @@ def estimates(rows: list[dict]) -> dict:
 
 def page(found: dict) -> str:
     parts = [
-        "The profile reading's committed impacts (docs/resolution_profile/rows.csv, one "
+        "The profile reading's committed impacts (docs/studies/resolution_profile/rows.csv, one "
         "surface per seed at every N, random disk) and their LAMMPS seconds "
         "(timings.csv); no new runs. **The seconds are upper bounds**: they were "
         "measured on a shared 2-core machine under a load of 10 to 17, so the atom-steps "

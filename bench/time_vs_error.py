@@ -91,7 +91,7 @@ DRIFT_NOTE = (
     "only ensemble means can check: [step_ensemble_verlet.md](step_ensemble_verlet.md) "
     "(`python bench/step_ensemble.py --samples 100 --docs`). A whole study's worst drifts "
     "at the default step, run again at smaller steps: [drift_tail.md](drift_tail.md) "
-    "(`python bench/drift_tail.py --impacts docs/results/impacts.csv --docs`). A step too "
+    "(`python bench/drift_tail.py --impacts docs/studies/results/impacts.csv --docs`). A step too "
     "large for the scene stops the run: `python -m runner impact --gamma 60 --seed 3 --dt "
     "0.02` stretches a wall segment past the contact's reach."
 )

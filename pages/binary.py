@@ -64,7 +64,10 @@ def section(by_wall: dict[str, dict], figure_dir: str, checks: dict | None = Non
             lattice: binary_comparison.shown(
                 entry,
                 lattice,
-                {"disk": checks.get(THIS_STUDY), "wall": checks.get(f"the wall, docs/{name}")},
+                {
+                    "disk": checks.get(THIS_STUDY),
+                    "wall": checks.get(f"the wall, docs/studies/{name}"),
+                },
             )
             for lattice, entry in numbers["lattices"].items()
         }

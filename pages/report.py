@@ -45,7 +45,7 @@ def report(
         The preset the study was run from, for the command on the page.
     tables : pathlib.Path, optional
         A folder that gets a copy of the tables and study.json, from which
-        ``report_from_tables`` remakes the page (docs/results/ for the paper).
+        ``report_from_tables`` remakes the page (docs/studies/results/ for the paper).
     readings : dict of str to pathlib.Path, optional
         Table folders of the same study under other options, by name, which a
         grazing page tabulates (``grazing.readings_section``).
@@ -95,7 +95,7 @@ def report_from_tables(
     readings: dict[str, Path] | None = None,
     sections: tuple[str, ...] | None = None,
 ) -> dict:
-    """The page and figures of a study from its tables alone (docs/results/).
+    """The page and figures of a study from its tables alone (docs/studies/results/).
 
     Parameters
     ----------

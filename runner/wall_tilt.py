@@ -1,6 +1,6 @@
 """The letter's mechanism for e > 1, checked from dumps: the wall's tilt under the disk.
 
-    python -m runner tilt [--tables docs/grazing] [--gamma G] [--dump-every 10]
+    python -m runner tilt [--tables docs/studies/grazing] [--gamma G] [--dump-every 10]
                           [--docs | --out FOLDER]
 
 From a grazing study's committed tables (runner study grazing), at the angle
@@ -30,7 +30,7 @@ from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
 from ground.gate import grant, make_folder
-from ground.paths import ROOT
+from ground.paths import ROOT, study_docs
 from pages.report import shown_path
 from pages.text import markdown_table
 
@@ -98,7 +98,7 @@ def add_tilt_arguments(parser: argparse.ArgumentParser) -> None:
         "--tables",
         type=InPath(needs=("impacts.csv", "study.json")),
         default=None,
-        help="a grazing study's tables: impacts.csv and study.json (default: docs/grazing)",
+        help="a grazing study's tables: impacts.csv and study.json (default: docs/studies/grazing)",
     )
     parser.add_argument(
         "--gamma",
@@ -133,7 +133,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
         If the tables are missing or --gamma is not one of their angles.
     """
     # the default is checked here; a given folder was by its type
-    tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
+    tables = Path(args.tables) if args.tables else study_docs("grazing")
     if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
         raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
     try:

@@ -1,5 +1,5 @@
 """How the paper's facts move with the impact speed and the roughness around
-one reading (studies/fact_sensitivity.toml, docs/fact_sensitivity.md).
+one reading (studies/fact_sensitivity.toml, docs/studies/fact_sensitivity/fact_sensitivity.md).
 
 The study sweeps v_n and the roughness one at a time around its base (each
 axis's first value); for each point, e (mean over cot gamma >= 1), Walton's

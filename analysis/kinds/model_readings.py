@@ -1,6 +1,6 @@
 """The readings of the model crossed with the best walls, ranked against the
 paper's five facts (MODEL.md section 8; studies/model_readings.toml,
-docs/model_readings.md).
+docs/studies/model_readings/model_readings.md).
 
 Per reading, the five facts with their seed-bootstrap errors
 (analysis.statistics.estimates, analysis.statistics.claims): e (mean over cot gamma >= 1), Walton's

@@ -99,7 +99,7 @@ def study_rows(study, name: str) -> list[dict]:
     return rows
 
 
-# A readings study's tables in its folder (docs/<page>/ for the committed one).
+# A readings study's tables in its folder (docs/studies/<page>/ for the committed one).
 ROWS = "rows.csv"
 RECORD = "run.json"
 

@@ -1,6 +1,6 @@
 """Two disks against the symmetric references (studies/binary_references.toml,
-docs/binary_references.md): does two-body physics change e, beta and mu, and
-does the way the wall is built?
+docs/studies/binary_references/): does two-body physics change e, beta and
+mu, and does the way the wall is built?
 
 Five readings (analysis.kinds.readings.REFERENCES) of what the disk hits, every
 seed's disk the same in all five:

@@ -1,5 +1,5 @@
 """e, beta and the fits against the disk's resolution (studies/resolution.toml,
-docs/resolution.md), for any reading (the rows' ``limit``) and any levels.
+docs/studies/resolution/resolution.md), for any reading (the rows' ``limit``) and any levels.
 
 The study runs the random and triangular disks from 200 to 12,800 points on
 walls of twice their points, under readings of how the model is carried to

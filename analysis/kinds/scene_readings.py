@@ -1,5 +1,5 @@
 """The readings of the wall side by side against the paper's facts
-(MODEL.md section 8; studies/scene_readings.toml, docs/scene_readings.md).
+(MODEL.md section 8; studies/scene_readings.toml, docs/studies/scene_readings/scene_readings.md).
 
 Per reading: mean e in three bands of cot gamma with standard errors, Walton's
 mu and beta0 with chi2/dof, the median first-to-last contact time and number

@@ -1,5 +1,5 @@
 """Does the wall's width change grazing impacts? (studies/wall_width.toml,
-docs/wall_width.md)
+docs/studies/wall_width/wall_width.md)
 
 At grazing angles the disk slides several R during contact, and on MODEL.md's
 8 R wall its centre can pass an end of the wall, where the wall is held,

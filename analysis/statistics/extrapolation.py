@@ -1,5 +1,5 @@
 """A quantity's limit as the resolution grows, with its form as a systematic
-(docs/resolution.md; its numbers for any reading and any set of levels).
+(docs/studies/resolution/resolution.md; its numbers for any reading and any set of levels).
 
 The levels are disk resolutions N with a value and its statistical error;
 the spacing is h = sqrt(REFERENCE_N / N) (1 at the paper's 800 points). From

@@ -1,5 +1,5 @@
 """Differences between resolutions per seed, and the multilevel Monte Carlo
-allocation of seeds per resolution (docs/resolution.md).
+allocation of seeds per resolution (docs/studies/resolution/resolution.md).
 
 A multilevel estimate of Q at the finest resolution N_L writes it as
 Q(N_0) + sum_l [Q(N_l) - Q(N_l-1)] and estimates each term from its own

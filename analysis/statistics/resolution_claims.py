@@ -1,7 +1,7 @@
 """The paper's claims judged at each resolution and in the limit
-(docs/resolution.md; the rules are analysis.statistics.claims's).
+(docs/studies/resolution/resolution.md; the rules are analysis.statistics.claims's).
 
-Per reading, each claim of docs/results.md's table that the resolution study
+Per reading, each claim of docs/studies/results/results.md's table that the resolution study
 measures, and the letter's e > 1 peak at grazing incidence, gets a verdict at
 every level and in the limit N -> infinity:
 

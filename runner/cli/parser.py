@@ -72,7 +72,7 @@ def parser() -> OneLineParser:
         metavar="STUDY",
         nargs="?",
         type=study_argument,
-        help="a study file with a page (its tables in docs/<page>/)",
+        help="a study file with a page (its tables in docs/studies/<page>/)",
     )
     page.add_argument(
         "--all",

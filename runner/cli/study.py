@@ -68,8 +68,8 @@ def add_study_arguments(study) -> None:
         type=study_argument,
         help=f"a study file (studies/*.toml, or a path to one), or its name: "
         f"{', '.join(study_names())}; paper: the study of docs/model.md section 7 in full; demo: "
-        "the random lattice, 4 samples; speed: e and beta against v_n (docs/speed.md); "
-        "grazing: e up to 86 degrees (docs/grazing.md)",
+        "the random lattice, 4 samples; speed: e and beta against v_n (docs/studies/speed/); "
+        "grazing: e up to 86 degrees (docs/studies/grazing/)",
     )
     grid = study.add_argument_group(
         "the grid (default: the study's study.json if it exists, else the preset's)"
@@ -148,16 +148,16 @@ def add_study_arguments(study) -> None:
         metavar="DIR",
         type=InPath("folder", ("impacts.csv", "failed.csv", "study.json")),
         default=None,
-        help="only the page and its figures, from a study's tables in DIR (docs/results: "
+        help="only the page and its figures, from a study's tables in DIR (docs/studies/results: "
         "the committed paper study), without its runs; into runs/<name>/ (default name: "
         "<preset>_from_tables), or with --docs into docs/",
     )
     pages.add_argument(
         "--docs",
         action="store_true",
-        help="write the page, its figures and tables into docs/ instead of the study's folder: "
-        "docs/results.md for paper (make paper does this), docs/speed.md, docs/grazing.md; "
-        "with another --name, docs/<name>.md",
+        help="write the page, its figures and tables into docs/studies/<page>/ instead of the "
+        "study's folder (docs/studies/results/ for paper: make paper does this); with another "
+        "--name, a reading its page tabulates, into docs/studies/<name>/",
     )
 
 
@@ -286,7 +286,7 @@ def run_one_study(args, described: StudyFile | None, study: Study | None = None)
 
     refuse_idle_options(args)
     # the study's page, or (with --name) a reading its page tabulates: the
-    # reading's tables go into docs/<name>/ and the study's page is made again
+    # reading's tables go into docs/studies/<name>/ and the study's page is made again
     # with them; the reading's own page stays under runs/
     places = study_places(args, described)
     sections = (described.sections or None) if described else None

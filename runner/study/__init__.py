@@ -47,7 +47,7 @@ from .sample_bodies import SAMPLE_BODIES
 LATTICES = STUDY_LATTICES  # the study's lattice names (builder.materials)
 # The grid's numbers. A study larger than MAX_IMPACTS is refused with its
 # size and the time it would take at IMPACTS_PER_WORKER_MINUTE, the paper
-# study's rate per worker (1,010 per minute on 2 workers, docs/results.md).
+# study's rate per worker (1,010 per minute on 2 workers, docs/studies/results/results.md).
 MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 505.0
 # What may differ between a study's study.json and a command that resumes it

@@ -1,8 +1,8 @@
 """Study files: a study's grid, scene and run in studies/<name>.toml.
 
     # studies/paper.toml
-    page = "results"                 # its page in docs/ (with --docs), if any
-    readings = []                    # docs/<name>/ tables of the same study under
+    page = "results"                 # its folder in docs/studies/ (--docs), if any
+    readings = []                    # docs/studies/<name>/: tables of the same study,
                                      # other readings, which the page tabulates
     sections = [...]                 # what its page reports, in order (default:
                                      # every one of builder.study_names.SECTIONS)
@@ -158,7 +158,8 @@ def read_study_file(path: Path) -> StudyFile:
     readings = data.pop("readings", [])
     if not isinstance(readings, list) or any(page_problem(r, tables=True) for r in readings):
         raise InputError(
-            f"{path}: readings must be a list of plain names (docs/<name>/), got {readings!r}"
+            f"{path}: readings must be a list of plain names (docs/studies/<name>/), "
+            f"got {readings!r}"
         )
     if len(set(readings)) != len(readings) or page in readings:
         raise InputError(f"{path}: readings names a table twice, got {readings!r}")

@@ -1,6 +1,7 @@
 """Where a study's tables and page go: runs/<name>/, or with --docs its
-page in docs/ (or, with --name, a reading its page tabulates); and a page
-made again from its committed tables."""
+folder docs/studies/<page>/ (or, with --name, a reading its page
+tabulates: docs/studies/<name>/); and a page made again from its committed
+tables."""
 
 from __future__ import annotations
 
@@ -12,12 +13,10 @@ from pathlib import Path
 from ground.checks import require_out_folder
 from ground.errors import InputError
 from ground.gate import runs_folder
+from ground.paths import study_docs, study_page
 
-from . import ROOT
 from .file import READINGS_KINDS, StudyFile
 from .studies import all_studies, built_in_pages, require_page
-
-DOCS = ROOT / "docs"
 
 
 def shown(path: Path | str) -> Path:
@@ -50,7 +49,7 @@ def docs_page(args, described) -> str | None:
     if page != described.page and page not in described.readings:
         readings = f" or a reading its page tabulates ({', '.join(described.readings)})"
         raise InputError(
-            f"--docs writes the {args.preset} study's page, docs/{described.page}.md"
+            f"--docs writes the {args.preset} study's page, docs/studies/{described.page}/"
             f"{readings if described.readings else ''}; --name {name} is not one: leave out "
             f"--docs (its page goes into runs/{name}/)"
         )
@@ -77,9 +76,9 @@ def study_places(args, described: StudyFile | None) -> Places:
     """Where a `runner study` command's tables and page go.
 
     Without --docs, runs/<name>/ (the study's own folder); with --docs, the
-    study's page docs/<page>.md and its tables docs/<page>/, or with --name
-    one of the readings its page tabulates: docs/<name>/, the page in
-    runs/<name>/. --from-tables writes into runs/<name>/ (default name
+    study's folder docs/studies/<page>/ (page, tables, figures), or with
+    --name one of the readings its page tabulates: docs/studies/<name>/, the
+    page in runs/<name>/. --from-tables writes into runs/<name>/ (default name
     <preset>_from_tables), or with --docs into docs/.
 
     Raises
@@ -91,21 +90,21 @@ def study_places(args, described: StudyFile | None) -> Places:
     doc_name = docs_page(args, described)  # None: an axis' combination
     wanted = described.readings if described else ()
     tabulated = bool(args.docs) and doc_name in wanted
-    readings = {n: DOCS / n for n in wanted if (DOCS / n / "impacts.csv").is_file()}
+    readings = {n: study_docs(n) for n in wanted if (study_docs(n) / "impacts.csv").is_file()}
     if args.docs and not tabulated:
         for name in sorted(set(wanted) - set(readings)):
             print(
-                f"warning: the page has no row for {name}: docs/{name}/ holds no tables "
+                f"warning: the page has no row for {name}: docs/studies/{name}/ holds no tables "
                 f"(python -m runner study {args.preset} --name {name} --docs makes them)",
                 file=sys.stderr,
                 flush=True,
             )
-    tables = DOCS / doc_name if args.docs else None
-    page = DOCS / f"{doc_name}.md" if args.docs and not tabulated else None
+    tables = study_docs(doc_name) if args.docs else None
+    page = study_page(doc_name) if args.docs and not tabulated else None
     if args.from_tables:
         name = args.name or f"{args.preset}_from_tables"
         tables = tables or runs_folder() / name
-        page = DOCS / f"{doc_name}.md" if args.docs else tables / "results.md"
+        page = study_page(doc_name) if args.docs else tables / "results.md"
         if tabulated:
             page = require_out_folder("--name", runs_folder() / name) / "results.md"
             page.parent.mkdir(parents=True, exist_ok=True)
@@ -120,8 +119,8 @@ def study_places(args, described: StudyFile | None) -> Places:
 
 
 def remake_page(args) -> int:
-    """runner page: a study's page from its committed tables in docs/<page>/
-    (--all: every study's that has them)."""
+    """runner page: a study's page from its committed tables in
+    docs/studies/<page>/ (--all: every study's that has them)."""
     if args.all == (args.preset is not None):
         raise InputError("page: give a STUDY or --all, not both or neither")
     if args.out is not None and (args.out / "study.json").exists():  # a study's own folder
@@ -135,7 +134,7 @@ def remake_page(args) -> int:
     for described in all_studies().values():
         if not described.page:
             continue
-        tables = DOCS / described.page
+        tables = study_docs(described.page)
         if (tables / "study.json").is_file() or (tables / "rows.csv").is_file():
             print(f"wrote {shown(remake_one_page(described, args.out))}", flush=True)
         else:
@@ -145,7 +144,7 @@ def remake_page(args) -> int:
 
 
 def remake_one_page(described: StudyFile, out: Path | None) -> Path:
-    """A study's page (and its tables, with ``out``: into ``out``) from its
+    """A study's page (and its tables and figures, with ``out``: into ``out``) from its
     committed tables; the tables of the readings it tabulates are brought to
     this version's format from themselves first. Returns the page."""
     from analysis.study_tables import tidy_tables
@@ -161,10 +160,10 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
         own = require_page(described, described.page, *described.readings)
     if described.kind in READINGS_KINDS:
         return remake_readings_page(preset, described, out)
-    tables = DOCS / described.page
+    tables = study_docs(described.page)
     if not (tables / "study.json").is_file():
         raise InputError(f"{preset}: {tables} holds no study's tables")
-    readings = {n: DOCS / n for n in described.readings}
+    readings = {n: study_docs(n) for n in described.readings}
     for name, folder in readings.items():  # the page would lose its row
         if not (folder / "impacts.csv").is_file():
             raise InputError(
@@ -175,12 +174,12 @@ def remake_one_page(described: StudyFile, out: Path | None) -> Path:
         for name, folder in readings.items():
             if name in own:  # another study's own tables are its to tidy
                 tidy_tables(folder)
-    page = (out or DOCS) / f"{described.page}.md"
+    page = out / f"{described.page}.md" if out else study_page(described.page)
     report_from_tables(
         tables,
         page,
         preset=preset,
-        out=out / tables.name if out else tables,
+        out=out or tables,
         readings=readings,
         sections=described.sections or None,
     )
@@ -205,13 +204,13 @@ def combine_tables(folders: list[Path], out: Path) -> Path:
 
 
 def remake_tabulating_page(described: StudyFile, readings: dict[str, Path]) -> None:
-    """The study's page in docs/ again from its committed tables, with the
-    table of its readings."""
+    """The study's page in docs/studies/ again from its committed tables,
+    with the table of its readings."""
     from pages.report import report_from_tables
 
-    page = DOCS / f"{described.page}.md"
+    page = study_page(described.page)
     report_from_tables(
-        page.with_suffix(""),
+        page.parent,
         page,
         preset=described.study.name,
         readings=readings,

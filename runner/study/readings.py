@@ -8,7 +8,7 @@ finished and failed, become rows of the study's table marked with the
 combination's reading. ``[rerun]`` then takes the best readings by the
 page's rule to more samples (the same studies, more seeds) and runs other
 disks on the best. The table (rows.csv) and the record of the run (run.json)
-go into runs/<name>/, with --docs into docs/<page>/, and the page is made
+go into runs/<name>/, with --docs into docs/studies/<page>/, and the page is made
 from them, as ``python -m runner page <name>`` makes it again.
 """
 
@@ -24,10 +24,11 @@ from analysis.kinds.readings import ROWS, Setup, read_rows, study_rows, write_re
 from ground.checks import require_out_folder
 from ground.errors import InputError
 from ground.gate import make_folder
+from ground.paths import study_docs
 from pages.kinds import readings_page
 
 from ..cli.study_args import check_environment, check_source
-from . import ROOT, runs_folder
+from . import runs_folder
 from .file import StudyFile, axis_studies, combinations
 from .provenance import machine
 
@@ -71,9 +72,9 @@ def setup_of(name: str, described: StudyFile) -> Setup:
 
 
 def tables_folder(name: str, described: StudyFile, docs: bool) -> Path:
-    """docs/<page>/ with --docs, else runs/<name>/."""
+    """docs/studies/<page>/ with --docs, else runs/<name>/."""
     if docs:
-        return ROOT / "docs" / described.page
+        return study_docs(described.page)
     return require_out_folder("the study's folder", runs_folder() / name)
 
 
@@ -160,7 +161,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     make_folder(out)
     write_tables(rows, out, module.COLUMNS)
     write_record({**record, "machine": machine()}, out)
-    page = out.parent / f"{described.page or name}.md" if args.docs else out / f"{name}.md"
+    page = out / f"{described.page or name}.md" if args.docs else out / f"{name}.md"
     readings_page(described.kind, out, page, setup)
     failed = sum(bool(r.get("error")) and impact_state(r["error"]) == "failed" for r in rows)
     stuck = sum(bool(r.get("error")) for r in rows) - failed
@@ -171,12 +172,12 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
 
 def remake_page(name: str, described: StudyFile, out: Path | None = None) -> Path:
     """The page of a readings study again from its committed table in
-    docs/<page>/, into docs/ (or ``out``)."""
+    docs/studies/<page>/, beside it (or into ``out``)."""
     check_labels(described)
-    tables = ROOT / "docs" / described.page
+    tables = study_docs(described.page)
     if not (tables / ROWS).is_file():
         raise InputError(f"{name}: {tables} holds no table (rows.csv): run the study with --docs")
     if out is None:  # tables from before timings.csv: their seconds move out of rows.csv
         write_tables(read_rows(tables), tables, kind_module(described.kind).COLUMNS)
-    page = (out or tables.parent) / f"{described.page}.md"
+    page = (out or tables) / f"{described.page}.md"
     return readings_page(described.kind, tables, page, setup_of(name, described))

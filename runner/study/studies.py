@@ -14,7 +14,7 @@ from pathlib import Path
 from builder.outputs import committed, require_own_page
 from ground.errors import InputError
 from ground.gate import grant
-from ground.paths import DOCS
+from ground.paths import study_docs
 
 from . import Study
 from .file import STUDIES, StudyFile, read_study_file, study_path
@@ -68,8 +68,8 @@ def committed_studies() -> list[str]:
 
 
 def require_page(described: StudyFile, page: str, *also: str) -> list[str]:
-    """Let ``described`` write docs/<page>.md, docs/<page>/ and
-    docs/figures/<page>/ (and the same of the pages ``also``, which its page
+    """Let ``described`` write docs/studies/<page>/ (its page, tables and
+    figures; and the same of the pages ``also``, which its page
     tabulates) if the page is its own (builder.outputs.require_own_page), by
     opening the one gate of every write (ground.gate) to them. A page of
     ``also`` that is another committed study's own page (the paper's
@@ -102,7 +102,7 @@ def require_page(described: StudyFile, page: str, *also: str) -> list[str]:
             if n not in tracked and n != name and each in (f.page, *f.readings)
         ]
         made_by = None
-        record = DOCS / each / "study.json"
+        record = study_docs(each) / "study.json"
         if record.is_file():
             try:
                 made_by = json.loads(record.read_text(encoding="utf-8")).get("name")
@@ -110,8 +110,6 @@ def require_page(described: StudyFile, page: str, *also: str) -> list[str]:
                 made_by = None
         where = str(path) if path else name
         require_own_page(where, name, each, owners, naming, committed_file, made_by)
-        grant(DOCS / f"{each}.md", DOCS / each, DOCS / "figures" / each)
-        if each == "results":  # the paper's page keeps its figures in docs/figures/ itself
-            grant(DOCS / "figures")
+        grant(study_docs(each))
         granted_pages.append(each)
     return granted_pages

@@ -25,10 +25,14 @@ SCRIPTS = sorted(
 COMBINATIONS = [
     (
         "drift_tail.py",
-        ["--impacts", "docs/results/impacts.csv", "--dts", "0.002", "0.002"],
+        ["--impacts", "docs/studies/results/impacts.csv", "--dts", "0.002", "0.002"],
         "--dts",
     ),
-    ("drift_tail.py", ["--impacts", "docs/results/impacts.csv", "--worst", "10000"], "--worst"),
+    (
+        "drift_tail.py",
+        ["--impacts", "docs/studies/results/impacts.csv", "--worst", "10000"],
+        "--worst",
+    ),
     ("drift_tail.py", ["--impacts", "README.md"], "--impacts"),
     ("large_disk.py", ["--ranks", "1", "1"], "--ranks"),
     ("resolution_cost.py", ["--sizes", "800", "1600", "800"], "--sizes"),
@@ -40,7 +44,7 @@ COMBINATIONS = [
     ("time_vs_error.py", ["--summarise", "--out", "{tmp}"], "--summarise"),
 ]
 # What an option needs besides the one under test.
-REQUIRED = {"drift_tail.py": ["--impacts", "docs/results/impacts.csv"]}
+REQUIRED = {"drift_tail.py": ["--impacts", "docs/studies/results/impacts.csv"]}
 # What starts the work of a benchmark or writes its page: a case that reached
 # one of them was not refused, and stops there rather than running for hours.
 WORK = (

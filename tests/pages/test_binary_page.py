@@ -58,13 +58,14 @@ def test_only_impacts_both_studies_have_are_compared():
 
 @pytest.mark.slow
 def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
-    """docs/binary_grazing.md from docs/binary_grazing/ and the walls'
-    tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
+    """docs/studies/binary_grazing/binary_grazing.md from its folder and the walls'
+    tables its study file names (docs/studies/grazing/,
+    docs/studies/binary_grazing_wall_v0.005/):
     the same page, but for where it says its files are."""
     from pages.report import report_from_tables
     from runner.study.studies import study_file
 
-    docs = ROOT / "docs"
+    docs = ROOT / "docs" / "studies"
     page = tmp_path / "binary_grazing.md"
     report_from_tables(
         docs / "binary_grazing",
@@ -74,8 +75,8 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
         readings={name: docs / name for name in study_file("binary_grazing").readings},
         sections=study_file("binary_grazing").sections,
     )
-    made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
-    assert made == (docs / "binary_grazing.md").read_text()
+    made = page.read_text().replace(str(tmp_path / "tables"), "docs/studies/binary_grazing")
+    assert made == (docs / "binary_grazing" / "binary_grazing.md").read_text()
 
 
 def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():

@@ -82,7 +82,7 @@ class EntryPoint:
 
 # What a benchmark needs besides the option under test.
 BENCH_BASE = {
-    "drift_tail": ["--impacts", str(ROOT / "docs" / "results" / "impacts.csv")],
+    "drift_tail": ["--impacts", str(ROOT / "docs" / "studies" / "results" / "impacts.csv")],
     "paper_ensemble": ["--before", "HEAD"],
 }
 

@@ -190,7 +190,8 @@ FILE_CASES = [
 PAGE_CASES = [
     # a page that another study's, or committed, is not a file of one's own
     study('page = "results"\n' + SMALL, "f.toml: page 'results' is the paper study's", "--docs"),
-    study('page = "figures"\n' + SMALL, "page 'figures' is committed in docs/", "--docs"),
+    study('page = "wall_tilt"\n' + SMALL, "page 'wall_tilt' is committed in docs/", "--docs"),
+    study('page = "studies"\n' + SMALL, "page 'studies' is committed in docs/", "--docs"),
     study('page = "model"\n' + SMALL, "page 'model' is committed in docs/", "--docs"),
     study('page = "benchmarks"\n' + SMALL, "page 'benchmarks' is committed", "--docs"),
     study('page = "grazing_literal"\n' + SMALL, "is the grazing study's", "--docs"),
@@ -209,10 +210,10 @@ PAGE_CASES = [
         {"f.toml": 'page = "results"\n'},
     ),  # fmt: skip
     Case(
-        "page of own file, page figures",
+        "page of own file, page wall_tilt",
         ["page", "{tmp}/f.toml"],
-        "page 'figures' is committed in docs/",
-        {"f.toml": 'page = "figures"\n'},
+        "page 'wall_tilt' is committed in docs/",
+        {"f.toml": 'page = "wall_tilt"\n'},
     ),  # fmt: skip
     command("study paper --name other --docs", "--name other is not one", name="other"),
     command("study grazing --name paper_x --docs", "--name paper_x is not one", name="paper_x"),
@@ -223,7 +224,10 @@ PAGE_CASES = [
 ]
 
 PATH_CASES = [
-    command("impact --out docs/wall_width", "docs/wall_width is inside docs/, the committed"),
+    command(
+        "impact --out docs/studies/wall_width",
+        "docs/studies/wall_width is inside docs/, the committed",
+    ),
     command("impact --out studies/x", "studies/x is inside studies/"),
     command("impact --out runner/x", "runner/x is inside runner/, the project's own"),
     command("impact --out {docs_link}/x", "(it leads to " + str(DOCS / "x") + ")"),
@@ -233,7 +237,11 @@ PATH_CASES = [
     command("impact --out " + str(ROOT / "analysis"), "is inside analysis/"),
     command("page speed --out docs", "argument --out: docs is inside docs/"),
     command("page speed --out {docs_link}", "is inside docs/"),
-    command("scene --out docs/results", "docs/results is inside docs/", module="builder.__main__"),
+    command(
+        "scene --out docs/studies/results",
+        "docs/studies/results is inside docs/",
+        module="builder.__main__",
+    ),
     command(
         "--out docs/x", "docs/x is inside docs/", "validate --out docs/x", module="bench.validation"
     ),
@@ -244,7 +252,7 @@ PATH_CASES = [
     command(
         "study demo --name evil",
         "evil is inside docs/, the committed record (it leads to",
-        before={"evil": DOCS / "results"},
+        before={"evil": DOCS / "studies" / "results"},
     ),  # fmt: skip
     command(
         "study demo",

@@ -122,7 +122,7 @@ def test_two_study_files_may_not_name_the_same_new_page(tmp_path):
         assert "Traceback" not in done.stderr
     finally:
         placed.unlink(missing_ok=True)
-    assert not (DOCS / "h44_shared.md").exists() and not (DOCS / "h44_shared").exists()
+    assert not (DOCS / "studies" / "h44_shared").exists()
     assert git_status() == status
 
 
@@ -134,11 +134,12 @@ def test_an_impact_folder_that_links_into_docs_is_refused_not_emptied(tmp_path):
     name = "h44_link_docs"
     folder = RUNS / name / "random" / "s1" / "g80.5000"
     folder.parent.mkdir(parents=True, exist_ok=True)
-    folder.symlink_to(DOCS / "figures")
+    figures = DOCS / "studies" / "results" / "figures"
+    folder.symlink_to(figures)
     status = git_status()
-    listing = sorted(p.name for p in (DOCS / "figures").iterdir())
+    listing = sorted(p.name for p in figures.iterdir())
     refused(command("study", str(study), "--name", name), "it leads to")
-    assert sorted(p.name for p in (DOCS / "figures").iterdir()) == listing
+    assert sorted(p.name for p in figures.iterdir()) == listing
     assert git_status() == status
 
 

@@ -21,7 +21,7 @@ from runner.study.readings import setup_of
 from runner.study.studies import study_file
 from tests.helpers import ROOT, RUNS
 
-DOCS = ROOT / "docs"
+DOCS = ROOT / "docs" / "studies"  # each study's folder: page, tables, figures
 
 
 def rows_of(name: str) -> list[dict]:
@@ -157,15 +157,15 @@ def test_the_committed_page_is_made_again_from_its_table(tmp_path, name, table_r
     )
     assert proc.returncode == 0, proc.stderr
     rebuilt = (tmp_path / f"{name}.md").read_text()
-    assert rebuilt == (DOCS / f"{name}.md").read_text()
+    assert rebuilt == (DOCS / name / f"{name}.md").read_text()
     table = [x for x in rebuilt.splitlines() if x.startswith("| ") and "---" not in x]
     assert len(table) == table_rows + 1  # and the header
-    for figure in (DOCS / "figures" / name).glob("*.png"):
-        assert (tmp_path / "figures" / name / figure.name).stat().st_size > 10_000
+    for figure in (DOCS / name / "figures").glob("*.png"):
+        assert (tmp_path / "figures" / figure.name).stat().st_size > 10_000
 
 
 def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
-    """runner page takes a results study too (its tables in docs/<page>/): the
+    """runner page takes a results study too (its tables in docs/studies/<page>/): the
     speed study's committed page, byte for byte, and its tables left as they were."""
     before = {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()}
     proc = subprocess.run(
@@ -176,7 +176,7 @@ def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
         timeout=600,
     )
     assert proc.returncode == 0, proc.stderr
-    assert (tmp_path / "speed.md").read_text() == (DOCS / "speed.md").read_text()
+    assert (tmp_path / "speed.md").read_text() == (DOCS / "speed" / "speed.md").read_text()
     assert {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()} == before
 
 

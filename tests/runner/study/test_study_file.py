@@ -264,7 +264,9 @@ def test_a_page_has_the_sections_its_file_names(tmp_path):
     path.write_text('page = "short"\nsections = ["fits", "claims"]\n')
     sections = read_study_file(path).sections
     page = tmp_path / "short.md"
-    report_from_tables(ROOT / "docs" / "results", page, out=tmp_path / "t", sections=sections)
+    report_from_tables(
+        ROOT / "docs" / "studies" / "results", page, out=tmp_path / "t", sections=sections
+    )
     headings = [x for x in page.read_text().splitlines() if x.startswith("## ")]
     assert headings[:2] == ["## Fits", "## The paper's claims"]
     assert "## What the errors are" not in headings and "## Model-free measures" not in headings

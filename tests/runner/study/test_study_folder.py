@@ -47,7 +47,7 @@ def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):
 
 def test_the_page_comes_back_from_the_tables_alone(uninterrupted, tmp_path):
     """report_from_tables remakes a study's page and means from impacts.csv,
-    failed.csv and study.json, with no run folder (docs/results/ for the paper)."""
+    failed.csv and study.json, with no run folder (docs/studies/results/ for the paper)."""
     from pages.report import report_from_tables
 
     folder = RUNS / "test_study_whole"
@@ -201,7 +201,7 @@ def test_a_result_with_nan_is_not_a_result(uninterrupted):
 def committed_tables_copy(folder: Path) -> Path:
     folder.mkdir(parents=True)
     for name in ("impacts.csv", "failed.csv", "study.json"):
-        (folder / name).write_bytes((ROOT / "docs" / "results" / name).read_bytes())
+        (folder / name).write_bytes((ROOT / "docs" / "studies" / "results" / name).read_bytes())
     return folder
 
 
