@@ -58,7 +58,6 @@ COLUMNS = (
     "contact",
     "stop_rule",
     "lammps_version",
-    "git_revision",
 )
 # A binary study's impacts.csv has these too (analysis.impact.binary); its
 # vibration_wall is the second disk's, and side_clearance is empty (no wall).
@@ -210,6 +209,7 @@ def row(result: dict, study_lattice: str) -> dict:
     columns = HELD_COLUMNS if held(values) else columns
     out = {name: "" if values.get(name) is None else values[name] for name in columns}
     out["wall_seconds"] = values.get("wall_seconds", "")  # for timings.csv, not a column
+    out["git_revision"] = values.get("git_revision", "")  # for run.json, not a column
     return out
 
 

@@ -26,13 +26,23 @@ from ground.checks import InPath
 from ground.errors import InputError
 
 TABLE = "docs/studies/results/impacts.csv"
+# where the table was before each study's record had its own folder (issue 47)
+EARLIER_TABLE = "docs/results/impacts.csv"
 WITHIN = 2.0  # standard errors
+
+
+def table_at(revision: str) -> str:
+    """The paper study's impacts.csv at a git revision, wherever it was then."""
+    try:
+        return file_at(revision, TABLE)
+    except subprocess.CalledProcessError:
+        return file_at(revision, EARLIER_TABLE)
 
 
 def git_revision(text: str) -> str:
     """argparse's type for a revision of this clone that holds the table."""
     try:
-        file_at(text, TABLE)
+        table_at(text)
     except subprocess.CalledProcessError:
         raise argparse.ArgumentTypeError(
             f"must be a git revision of this clone with {TABLE}, got {text!r}"
@@ -62,7 +72,7 @@ def parser():
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    before = list(csv.DictReader(io.StringIO(file_at(args.before, TABLE))))
+    before = list(csv.DictReader(io.StringIO(table_at(args.before))))
     try:
         with args.after.open() as handle:
             after = list(csv.DictReader(handle))

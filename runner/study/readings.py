@@ -20,11 +20,21 @@ from pathlib import Path
 
 from analysis.impact.failures import impact_state
 from analysis.kinds import kind_module
-from analysis.kinds.readings import ROWS, Setup, read_rows, study_rows, write_record, write_tables
+from analysis.kinds.readings import (
+    RECORD,
+    ROWS,
+    Setup,
+    read_rows,
+    study_rows,
+    write_record,
+    write_tables,
+)
+from analysis.table import TIMINGS
 from ground.checks import require_out_folder
 from ground.errors import InputError
 from ground.gate import make_folder
 from ground.paths import study_docs
+from ground.provenance import git_revision
 from pages.kinds import readings_page
 
 from ..cli.study_args import check_environment, check_source
@@ -159,8 +169,14 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
             for lattice in rerun["then_lattices"]:
                 rows += run(label, lattices=(lattice,))
     make_folder(out)
+    before = {n: (out / n).read_bytes() for n in (ROWS, RECORD, TIMINGS) if (out / n).is_file()}
     write_tables(rows, out, module.COLUMNS)
-    write_record({**record, "machine": machine()}, out)
+    write_record({**record, "git_revision": git_revision(), "machine": machine()}, out)
+    if before.get(ROWS) == (out / ROWS).read_bytes():
+        # every impact as the table had it: the provenance stays that of the run that made it
+        for name in (RECORD, TIMINGS):
+            if name in before:
+                (out / name).write_bytes(before[name])
     page = out / f"{described.page or name}.md" if args.docs else out / f"{name}.md"
     readings_page(described.kind, out, page, setup)
     failed = sum(bool(r.get("error")) and impact_state(r["error"]) == "failed" for r in rows)
