@@ -147,9 +147,9 @@ class BinaryPage(GrazingPage):
         for name, numbers in fits["wall_comparison"].items():
             binary.draw(numbers, study.figure_dir, name)
         extra["wall_comparison"] = binary.section(
-            fits["wall_comparison"], study.shown_figures, fits["normals"]
+            fits["wall_comparison"], study.shown_figures, fits["normals"], study.page.parent
         )
-        extra["normals"] = normals.section(fits["normals"])
+        extra["normals"] = normals.section(fits["normals"], study.page.parent)
         extra["findings"] = binary_findings.findings_section(fits, study.info)
         return extra
 

@@ -3,6 +3,8 @@ its committed page made again from the committed tables."""
 
 from __future__ import annotations
 
+import csv
+
 import numpy as np
 import pytest
 
@@ -138,9 +140,10 @@ def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
     assert np.all((cot_wall[keep_wall] >= low) & (cot_wall[keep_wall] <= high))
 
 
-def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
-    """The comparison's row shows e only where the normals' check finds it
-    robust on both targets; elsewhere 'withheld', and its verdict too."""
+def test_an_e_the_normals_disagree_on_is_withheld_on_the_page(tmp_path):
+    """The comparison's table (comparison.csv beside the page) shows e only
+    where the normals' check finds it robust on both targets; elsewhere it
+    is blank and its verdict 'withheld', which the page counts."""
     from pages.binary import section
 
     wall = impact_rows("random", WALL_BETA, seeds=8)
@@ -157,8 +160,13 @@ def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
             }
         },
     }
-    lines = section({"w": numbers}, "figures", {"two disks (this study)": check}).splitlines()
-    rows = [x for x in lines if x.startswith("| ") and not x.startswith("| gamma")]
-    rows = [x for x in rows if x.split(" | ")[0].lstrip("| ").replace(".", "").isdigit()]
-    assert "withheld" in rows[2] and rows[2].count("withheld") == 3  # e disks, difference, verdict
-    assert all("withheld" not in x for j, x in enumerate(rows) if j != 2)
+    text = section({"w": numbers}, "figures", {"two disks (this study)": check}, tmp_path)
+    with (tmp_path / "comparison.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert len(rows) == len(gammas)
+    assert rows[2]["e_disk"] == rows[2]["e_difference"] == "" and rows[2]["e_wall"] != ""
+    assert rows[2]["e_verdict"] == "withheld"
+    assert all(
+        r["e_disk"] != "" and r["e_verdict"] != "withheld" for j, r in enumerate(rows) if j != 2
+    )
+    assert "withheld at 1;" in text and "(comparison.csv)" in text
