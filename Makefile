@@ -188,14 +188,14 @@ lint: $(STAMPS)/python
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/ruff format --check .
 
-# The materials table (calibration/materials.json, docs/materials.md): about
+# The materials table (calibration/materials.json, docs/calibration/materials.md): about
 # three minutes on two cores. The table is committed; scenes refuse lattices
 # that are not in it.
 calibrate: setup
 	$(PYTHON) -m calibration run --install
 
 # LAMMPS at the default settings against the reference on ten scenes
-# (docs/validation_table.md); the reference runs are kept in runs/validation.
+# (docs/benchmarks/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
 	$(PYTHON) -m bench.validation --docs
 

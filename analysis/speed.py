@@ -115,7 +115,7 @@ def split_key(key: str) -> tuple[str, float]:
 def shear_over_bulk(lattice: str, k2_over_k1: float | None = None) -> float:
     """Shear over 2-D bulk modulus in the axes' frame, the wall's normal and
     tangent (calibration/materials.json): the strip pulled at 45 degrees gives
-    the axes' G (docs/materials.md); the random lattice has one G."""
+    the axes' G (docs/calibration/materials.md); the random lattice has one G."""
     angle = 0.0 if lattice == "random" else 45.0
     return float(calibrated(lattice, k2_over_k1, angle)["G_over_B"])
 
