@@ -167,7 +167,11 @@ def test_the_committed_page_is_made_again_from_its_table(tmp_path, name, table_r
 def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
     """runner page takes a results study too (its tables in docs/studies/<page>/): the
     speed study's committed page, byte for byte, and its tables left as they were."""
-    before = {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()}
+
+    def files() -> dict:  # the study's folder: page, tables, figures
+        return {p: p.read_bytes() for p in (DOCS / "speed").rglob("*") if p.is_file()}
+
+    before = files()
     proc = subprocess.run(
         [sys.executable, "-m", "runner", "page", "speed", "--out", str(tmp_path)],
         cwd=ROOT,
@@ -177,7 +181,7 @@ def test_a_results_page_is_made_again_by_the_same_command(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "speed.md").read_text() == (DOCS / "speed" / "speed.md").read_text()
-    assert {p.name: p.read_bytes() for p in (DOCS / "speed").iterdir()} == before
+    assert files() == before
 
 
 @pytest.mark.slow
