@@ -155,7 +155,7 @@ build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian
 	@mkdir -p build
 	gcc -O2 -fPIC -shared -Wall $< -o $@ -lm
 
-# The study (runner/study.py): tables, fits and figures in runs/<name>/.
+# The study (runner/study/__init__.py): tables, fits and figures in runs/<name>/.
 # Killed, it resumes where it stopped. STUDY_ARGS passes options, e.g.
 # make paper STUDY_ARGS="--workers 8" or STUDY_ARGS="--cluster slurm --jobs 4
 # --cores-per-job 16" (docs/cluster.md).
@@ -188,14 +188,14 @@ lint: $(STAMPS)/python
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/ruff format --check .
 
-# The materials table (calibration/materials.json, docs/materials.md): about
+# The materials table (calibration/materials.json, docs/calibration/materials.md): about
 # three minutes on two cores. The table is committed; scenes refuse lattices
 # that are not in it.
 calibrate: setup
 	$(PYTHON) -m calibration run --install
 
 # LAMMPS at the default settings against the reference on ten scenes
-# (docs/validation_table.md); the reference runs are kept in runs/validation.
+# (docs/benchmarks/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
 	$(PYTHON) -m bench.validation --docs
 

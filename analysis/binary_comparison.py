@@ -2,9 +2,9 @@
 comparison, in numbers (its page section and figures: pages.binary).
 
 The binary study's seeds and angles are those of a wall study (the paper's,
-docs/results/): a seed's disk is the same in both (builder/binary.py), so
+docs/studies/results/): a seed's disk is the same in both (builder/binary.py), so
 each seed gives a pair of impacts, and every error resamples whole seeds of
-both studies together (analysis.seeds).
+both studies together (analysis.statistics.seeds).
 """
 
 from __future__ import annotations
@@ -13,14 +13,14 @@ import numpy as np
 
 from builder.aim import AIM_TOLERANCE_DEG
 
-from .estimates import CHI2_LIMIT, lattice_constants, study_estimates
-from .fits import fit_walton, means
 from .normal_check import robustness
-from .seeds import SeedTable, seed_bootstrap, seed_tables
+from .statistics.estimates import CHI2_LIMIT, lattice_constants, study_estimates
+from .statistics.fits import fit_walton, means
+from .statistics.seeds import SeedTable, seed_bootstrap, seed_tables
 
 TARGETS = ("disk", "wall")
 QUANTITIES = ("e", "beta", "cot_gamma", "vibration_disk", "vibration_wall")
-# The claims' rule for "the same" (analysis.claims): within 2 errors the two
+# The claims' rule for "the same" (analysis.statistics.claims): within 2 errors the two
 # agree, beyond 3 they differ, in between undecided.
 SAME, DIFFERENT = 2.0, 3.0
 
@@ -88,9 +88,9 @@ def normal_checks(
     impacts of this study's seeds and angles."""
     checks = {THIS_STUDY: robustness(rows, resamples)}
     for name, pair in pairs.items():
-        checks[f"two disks, docs/{name}"] = robustness(pair, resamples)
+        checks[f"two disks, docs/studies/{name}"] = robustness(pair, resamples)
     for name, wall in walls.items():
-        checks[f"the wall, docs/{name}"] = robustness(paired_rows(rows, wall)[1], resamples)
+        checks[f"the wall, docs/studies/{name}"] = robustness(paired_rows(rows, wall)[1], resamples)
     return checks
 
 

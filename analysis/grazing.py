@@ -19,8 +19,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.stats import norm
 
-from .failures import genuine
-from .seeds import SeedTable, seed_bootstrap, seed_draws, seed_tables
+from .impact.failures import genuine
+from .statistics.seeds import SeedTable, seed_bootstrap, seed_draws, seed_tables
 
 PAPER_LAST_ANGLE = 80.5  # degrees: the paper's last angle
 SIGNIFICANT = 2.0  # e > 1 counts when it is above 1 by this many errors (look-elsewhere counted)

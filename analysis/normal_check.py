@@ -1,7 +1,7 @@
 """Is e robust to the choice of normal? Each angle's mean e and beta at every
 normal a target has, and whether they agree within the seed error.
 
-Two disks have three normals (analysis.binary: the line of centres at the
+Two disks have three normals (analysis.impact.binary: the line of centres at the
 apse, at the first touch, and the impulse's normal). The wall has its fixed
 normal, +y, and the impulse's normal, which its tables give: the disk comes
 in at (v_n / cot gamma, -v_n) without spin, leaves at v_n' = e v_n and
@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .seeds import SeedTable, seed_bootstrap, seed_tables
+from .statistics.seeds import SeedTable, seed_bootstrap, seed_tables
 
 DISK_NORMALS = ("apse", "first_touch", "impulse")
 WALL_NORMALS = ("fixed", "impulse")

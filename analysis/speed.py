@@ -3,7 +3,7 @@
 A speed study (``runner study speed``) runs every lattice at a few angles and
 several normal approach speeds v_n, with the same seeds at every speed and
 angle; so, as everywhere in this project, errors come from resampling whole
-seeds (analysis.seeds): a seed's impacts at every speed, angle and lattice go
+seeds (analysis.statistics.seeds): a seed's impacts at every speed, angle and lattice go
 into a resample together.
 
 From the means per lattice, speed and angle:
@@ -13,7 +13,7 @@ From the means per lattice, speed and angle:
   ``POWER_LAW_CHI2``), p with its seed-bootstrap error;
 - beta at the sticking angle (the largest cot gamma below the near-normal
   one) and the Coulomb friction the sliding angle (the smallest cot gamma)
-  implies, mu_eff = (1 + beta) / ((1 + e) K psi) (analysis.measures), as
+  implies, mu_eff = (1 + beta) / ((1 + e) K psi) (analysis.statistics.measures), as
   beta0 and mu against v_n;
 - the lattices' order by e beside their order by shear over bulk modulus
   (calibration/materials.json), which Gerl and Zippelius (Phys. Rev. E 59,
@@ -31,9 +31,9 @@ from scipy.optimize import curve_fit
 
 from builder.materials import calibrated
 
-from .failures import genuine
-from .measures import mu_eff
-from .seeds import RNG_SEED, SeedTable, seed_bootstrap, seed_tables
+from .impact.failures import genuine
+from .statistics.measures import mu_eff
+from .statistics.seeds import RNG_SEED, SeedTable, seed_bootstrap, seed_tables
 from .table import NEAR_SIDE
 
 # A power law "holds" over a run of speeds whose fit has a reduced chi^2 at
@@ -115,7 +115,7 @@ def split_key(key: str) -> tuple[str, float]:
 def shear_over_bulk(lattice: str, k2_over_k1: float | None = None) -> float:
     """Shear over 2-D bulk modulus in the axes' frame, the wall's normal and
     tangent (calibration/materials.json): the strip pulled at 45 degrees gives
-    the axes' G (docs/materials.md); the random lattice has one G."""
+    the axes' G (docs/calibration/materials.md); the random lattice has one G."""
     angle = 0.0 if lattice == "random" else 45.0
     return float(calibrated(lattice, k2_over_k1, angle)["G_over_B"])
 

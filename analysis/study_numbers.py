@@ -9,8 +9,8 @@ from __future__ import annotations
 from collections import Counter
 
 from . import binary_comparison, grazing, normal_check
-from .claims import claims
-from .estimates import study_estimates
+from .statistics.claims import claims
+from .statistics.estimates import study_estimates
 from .table import mean_rows, rounded
 
 

@@ -1,6 +1,12 @@
 """A study's tables: impacts.csv, failed.csv and study.json written from its
 runs' folders and read back (a page made again from them reads them here;
-pages.report makes the page)."""
+pages.report makes the page), and run.json, the run's provenance.
+
+The tables hold physics only: what was asked (study.json) and what came out
+(impacts.csv, failed.csv, means.csv, fits.json). Where, with which revision
+and how long the run ran is run.json's; a rerun that reproduces every
+impact byte for byte leaves the committed run.json as it was, so that it
+leaves ``git status`` clean."""
 
 from __future__ import annotations
 
@@ -13,8 +19,8 @@ from ground.errors import InputError
 from ground.gate import gate
 
 from . import speed
-from .failures import impact_state, state_of
-from .result import BINARY_FINITE, FINITE
+from .impact.failures import impact_state, state_of
+from .impact.result import BINARY_FINITE, FINITE
 from .table import (
     MEAN_COLUMNS,
     TIMING_COLUMNS,
@@ -43,7 +49,7 @@ def read_failure(job: dict) -> dict:
 
 
 # failed.csv: the impacts without a result; state: failed (the run did not go
-# as asked) or stuck (the disk had not left the wall by tmax: analysis.failures)
+# as asked) or stuck (the disk had not left the wall by tmax: analysis.impact.failures)
 FAILED_COLUMNS = ("lattice", "seed", "gamma", "vn", "state", "error")
 
 
@@ -59,10 +65,39 @@ def record_timings(study, rows: list[dict]) -> dict:
     return info
 
 
+# What a study's record says about its run rather than its physics: the
+# revisions of the code that ran its impacts (each result.json's), the whole
+# run's wall clock and CPU (runner.study.provenance) and its LAMMPS seconds.
+PROVENANCE = ("git_revisions", "wall_clock", "lammps_seconds")
+RUN_RECORD = "run.json"
+
+
 def public_record(info: dict) -> str:
     """study.json as a study's tables keep it: without the grid its study file
-    gave (runs' own record, runner.study.Study.source)."""
-    return json.dumps({k: v for k, v in info.items() if k != "source"}, indent=1)
+    gave (runs' own record, runner.study.Study.source) and without the run's
+    provenance (``run_record``)."""
+    return json.dumps(
+        {k: v for k, v in info.items() if k != "source" and k not in PROVENANCE}, indent=1
+    )
+
+
+def run_record(info: dict, rows: list[dict]) -> str:
+    """run.json of a study's tables: the git revisions its impacts were run
+    at (from the rows where they have them, else the record's), the whole
+    run's wall clock and its LAMMPS seconds."""
+    revisions = sorted({str(r["git_revision"]) for r in rows if r.get("git_revision")})
+    record = {"git_revisions": revisions or list(info.get("git_revisions", []))}
+    record.update({k: info[k] for k in PROVENANCE[1:] if k in info})
+    return json.dumps(record, indent=1)
+
+
+def write_records(info: dict, rows: list[dict], folder: Path, keep_run: bool = False) -> None:
+    """study.json and run.json of a study's tables into ``folder``; with
+    ``keep_run`` an existing run.json stays as it is (a rerun that
+    reproduced the committed impacts)."""
+    (folder / "study.json").write_text(public_record(info))
+    if not (keep_run and (folder / RUN_RECORD).is_file()):
+        (folder / RUN_RECORD).write_text(run_record(info, rows))
 
 
 def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
@@ -85,6 +120,9 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
         info = json.loads((tables / "study.json").read_text(encoding="utf-8"))
         if not isinstance(info, dict):
             raise ValueError(f"study.json is a JSON {type(info).__name__}, not a study's record")
+        if (tables / RUN_RECORD).is_file():  # the run's provenance, beside the physics
+            run = json.loads((tables / RUN_RECORD).read_text(encoding="utf-8"))
+            info = {**{k: run[k] for k in PROVENANCE if k in run}, **info}
         rows, failed = read("impacts.csv"), read("failed.csv")
         if not rows and not failed:  # a garbage or empty table: no page of nan
             raise ValueError("impacts.csv and failed.csv hold no impact")
@@ -108,14 +146,15 @@ def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
 def tidy_tables(tables: Path) -> None:
     """A study's tables in this version's format, from themselves alone (no
     run, nothing recomputed): impacts.csv without wall-clock seconds (their
-    sum into study.json's lammps_seconds), failed.csv with each impact's
+    sum into run.json's lammps_seconds) or git revisions (run.json's),
+    study.json without the run's provenance (run.json), failed.csv with each impact's
     state, the numbers of means.csv, fits.json and speed.json to
     ``TABLE_DIGITS``. Tables already so are left byte for byte."""
     info, rows, failed = read_tables(tables)
     gate(tables)  # the one gate of every write (ground.gate)
     write_csv(rows, tables / "impacts.csv", table_columns(rows))
     write_csv(failed, tables / "failed.csv", FAILED_COLUMNS)
-    (tables / "study.json").write_text(public_record(info))
+    write_records(info, rows, tables)
     if (tables / "fits.json").is_file():
         fits = rounded(json.loads((tables / "fits.json").read_text()))
         (tables / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")

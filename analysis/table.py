@@ -13,7 +13,7 @@ import numpy as np
 from builder.scene import MODEL_READINGS
 from ground.gate import gate
 
-from .result import MAX_DRIFT, UnreadableResult, read_result
+from .impact.result import MAX_DRIFT, UnreadableResult, read_result
 
 # The columns of impacts.csv, in order; every result.json has them. Physics
 # and provenance only: how long an impact took (result.json's wall_seconds)
@@ -58,9 +58,8 @@ COLUMNS = (
     "contact",
     "stop_rule",
     "lammps_version",
-    "git_revision",
 )
-# A binary study's impacts.csv has these too (analysis.binary); its
+# A binary study's impacts.csv has these too (analysis.impact.binary); its
 # vibration_wall is the second disk's, and side_clearance is empty (no wall).
 BINARY_COLUMNS = (
     *COLUMNS,
@@ -72,8 +71,9 @@ BINARY_COLUMNS = (
     "angular_momentum_change",
     "n_target_points",
     "target_inertia_ratio",
-    "n_disk_points",  # with the three before: each pair's two-body K (analysis.estimates)
-    # the other two normals (analysis.binary; e, beta, cot_gamma are the apse's)
+    # with the three before: each pair's two-body K (analysis.statistics.estimates)
+    "n_disk_points",
+    # the other two normals (analysis.impact.binary; e, beta, cot_gamma are the apse's)
     "e_first_touch",
     "beta_first_touch",
     "cot_gamma_first_touch",
@@ -89,7 +89,8 @@ BINARY_COLUMNS = (
     "aim_incidence_deg",
     "aim_turn_deg",
 )
-# A held second disk (partner image-held): the rows say so (analysis.estimates.two_body_k).
+# A held second disk (partner image-held): the rows say so
+# (analysis.statistics.estimates.two_body_k).
 HELD_COLUMNS = (*BINARY_COLUMNS, "target_held")
 
 
@@ -132,9 +133,9 @@ def table_columns(rows: list[dict]) -> tuple[str, ...]:
 
 
 # The columns of means.csv. "*_seed_sd": the error of the mean, the standard
-# deviation over resamples of whole seeds (analysis.seeds).
+# deviation over resamples of whole seeds (analysis.statistics.seeds).
 # The quantities of impacts.csv averaged per lattice and angle (means.csv, and
-# the seed bootstrap's, analysis/seeds.py, which adds side_clearance).
+# the seed bootstrap's, analysis/statistics/seeds.py, which adds side_clearance).
 AVERAGED = (
     "cot_gamma",
     "e",
@@ -208,6 +209,7 @@ def row(result: dict, study_lattice: str) -> dict:
     columns = HELD_COLUMNS if held(values) else columns
     out = {name: "" if values.get(name) is None else values[name] for name in columns}
     out["wall_seconds"] = values.get("wall_seconds", "")  # for timings.csv, not a column
+    out["git_revision"] = values.get("git_revision", "")  # for run.json, not a column
     return out
 
 
@@ -280,7 +282,7 @@ def mean_rows(rows: list[dict], errors: dict | None = None) -> list[dict]:
         One row per impact (``collect``).
     errors : dict, optional
         (lattice, gamma_deg) -> {"e_seed_sd": ..., ...}: the errors of the
-        means (``analysis.estimates.study_estimates``), merged into the rows.
+        means (``analysis.statistics.estimates.study_estimates``), merged into the rows.
 
     Returns
     -------

@@ -36,7 +36,7 @@ from ground.gate import runs_folder
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes
-from runner.clusters import WORKERS
+from runner.cluster.workers import WORKERS
 from runner.impact import run_scene
 from runner.options import RunOptions
 
@@ -47,7 +47,7 @@ SETTINGS += [("lammps", dt) for dt in (4e-3, 2e-3, 1e-3, 5e-4)]
 FIGURE_SCENE = "random_g5.7"  # the energy against time, panel (a)
 FIGURE_SETTING = ("verlet", 1e-3)
 # Not chaotic: perturbations of 1e-9 R move e and beta by 1e-7 at most
-# (docs/validation_table.md), so their e and beta converge with dt.
+# (docs/benchmarks/validation_table.md), so their e and beta converge with dt.
 REGULAR_SCENES = ("square_g5.7", "square_g45")
 CONVERGED = ("suzuki", 5e-4)
 GROUPS = {

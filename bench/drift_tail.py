@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.result import MAX_DRIFT
+from analysis.impact.result import MAX_DRIFT
 from bench.common import bench_parser, distinct, markdown_table, refuse, write_report
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
@@ -34,8 +34,8 @@ from ground.checks import InPath, Range
 from ground.errors import InputError
 from runner.impact import run_scene
 from runner.options import DT
-from runner.studies import load_study
 from runner.study import LATTICES
+from runner.study.studies import load_study
 
 ENERGY_TOLERANCE = 5e-3  # make bench's criterion on rough scenes
 WORST = Range(1, 10_000, integer=True)

@@ -34,7 +34,7 @@ import math
 import shutil
 import sys
 
-from analysis.series import read_energies
+from analysis.impact.series import read_energies
 from bench.common import (
     RUNS,
     bench_parser,

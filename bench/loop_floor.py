@@ -51,7 +51,7 @@ from builder.scene import SceneSpec
 from ground.checks import Range
 from ground.launch import command_line, run_python
 from runner.options import RunOptions
-from runner.studies import load_study
+from runner.study.studies import load_study
 
 SOURCE = ROOT / "bench" / "loop_floor.c"
 BINARY = ROOT / "build" / "loop_floor"

@@ -54,7 +54,7 @@ from builder.scene import SceneSpec
 from ground.launch import command_line
 from runner.impact import run_scene
 from runner.options import DT, NRESPA
-from runner.studies import load_study
+from runner.study.studies import load_study
 
 IMPACT_DECK = ROOT / "decks" / "impact.lmp"
 SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
@@ -170,7 +170,7 @@ def commit_name(text: str) -> str:
 
 
 commit_name.__name__ = "commit"
-commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/cli/test_bad_input.py
+commit_name.bad_values = ("", "a b", "-x", "no-such-commit")  # tests/runner/cli/test_bad_input.py
 
 
 def parser() -> argparse.ArgumentParser:

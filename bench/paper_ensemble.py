@@ -5,9 +5,9 @@
 A change that only reorders LAMMPS's sums (another neighbour list or atom
 order) changes every rough impact's digits, and the contact's chaos grows
 them: e and beta of one impact are then not comparable, their ensembles are.
-For every lattice and angle of docs/results/impacts.csv (or --after's), the
+For every lattice and angle of docs/studies/results/impacts.csv (or --after's), the
 paired difference of e and beta over the seeds both runs finished, against
-the same table at the git revision --before (analysis/ensemble.py).
+the same table at the git revision --before (analysis/statistics/ensemble.py).
 """
 
 from __future__ import annotations
@@ -20,19 +20,29 @@ import sys
 
 import numpy as np
 
-from analysis.ensemble import impact_differences, paired_differences, summary
+from analysis.statistics.ensemble import impact_differences, paired_differences, summary
 from bench.common import ROOT, bench_parser, file_at, markdown_table, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError
 
-TABLE = "docs/results/impacts.csv"
+TABLE = "docs/studies/results/impacts.csv"
+# where the table was before each study's record had its own folder (issue 47)
+EARLIER_TABLE = "docs/results/impacts.csv"
 WITHIN = 2.0  # standard errors
+
+
+def table_at(revision: str) -> str:
+    """The paper study's impacts.csv at a git revision, wherever it was then."""
+    try:
+        return file_at(revision, TABLE)
+    except subprocess.CalledProcessError:
+        return file_at(revision, EARLIER_TABLE)
 
 
 def git_revision(text: str) -> str:
     """argparse's type for a revision of this clone that holds the table."""
     try:
-        file_at(text, TABLE)
+        table_at(text)
     except subprocess.CalledProcessError:
         raise argparse.ArgumentTypeError(
             f"must be a git revision of this clone with {TABLE}, got {text!r}"
@@ -62,7 +72,7 @@ def parser():
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    before = list(csv.DictReader(io.StringIO(file_at(args.before, TABLE))))
+    before = list(csv.DictReader(io.StringIO(table_at(args.before))))
     try:
         with args.after.open() as handle:
             after = list(csv.DictReader(handle))

@@ -3,22 +3,22 @@
     python bench/resolution_error.py --docs
     python bench/resolution_error.py [--rows CSV] [--timings CSV] [--out FOLDER] [--docs]
 
-No runs: it reads the committed rows (docs/resolution_profile/rows.csv) and
+No runs: it reads the committed rows (docs/studies/resolution_profile/rows.csv) and
 each impact's LAMMPS seconds (timings.csv), reading ``profile`` on the random
 disk. For e near normal incidence (e_normal) and Walton's mu (measured way),
-the limit Q_limit is analysis.resolution.limits over every level. Three
+the limit Q_limit is analysis.kinds.resolution.limits over every level. Three
 estimates at each finest level N, each with its error against Q_limit,
 sqrt(bias^2 + stat^2), and the seconds actually spent on the levels it uses:
 
 (a) one resolution alone: Q(N) with its seed error; the seconds of level N;
-(b) the extrapolation: analysis.extrapolation.limit of the levels 800..N
+(b) the extrapolation: analysis.statistics.extrapolation.limit of the levels 800..N
     (its statistical error; the forms' band is a column of its own);
 (c) the multilevel estimate: Q(800) + the per-seed differences paired by
-    seed and angle up to N (analysis.levels.coupled_differences), its error
+    seed and angle up to N (analysis.statistics.levels.coupled_differences), its error
     the terms' errors summed in quadrature; e only (mu, a fit over the
     angles, has no per-seed value); the seconds of the levels 800..N.
 
-For a target error T (analysis.resolution.TARGETS) the time needed scales the
+For a target error T (analysis.kinds.resolution.TARGETS) the time needed scales the
 seeds of every level used: stat ~ 1 / sqrt(seeds), so the time is
 seconds * stat^2 / (T^2 - bias^2), and "never" where |bias| >= T.
 """
@@ -29,13 +29,14 @@ import csv
 import math
 from pathlib import Path
 
-from analysis import extrapolation, levels, resolution
+from analysis.kinds import resolution
+from analysis.statistics import extrapolation, levels
 from bench.common import bench_parser, markdown_table, page_folder, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError
-from ground.paths import ROOT
+from ground.paths import study_docs
 
-TABLES = ROOT / "docs" / "resolution_profile"
+TABLES = study_docs("resolution_profile")
 READING, LATTICE = "profile", "random"
 QUANTITIES = ("e_normal", "mu")
 
@@ -154,7 +155,7 @@ def estimates(rows: list[dict]) -> dict:
 
 def page(found: dict) -> str:
     parts = [
-        "The profile reading's committed impacts (docs/resolution_profile/rows.csv, one "
+        "The profile reading's committed impacts (docs/studies/resolution_profile/rows.csv, one "
         "surface per seed at every N, random disk) and their LAMMPS seconds "
         "(timings.csv); no new runs. **The seconds are upper bounds**: they were "
         "measured on a shared 2-core machine under a load of 10 to 17, so the atom-steps "

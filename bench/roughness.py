@@ -2,7 +2,7 @@
 
     python bench/roughness.py [--seeds 100] [--first-seed 1] [--write [--docs]]
 
-Builds the disk of every lattice of the study (runner/study.py LATTICES) and
+Builds the disk of every lattice of the study (runner/study/__init__.py LATTICES) and
 the wall of every reading (800, 1,600 points, the disk's number density;
 sides or sides and bottom held) for each seed, as the study does (the streams
 of builder.sample.sample_seeds), and reports per body and reading:

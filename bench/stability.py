@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.series import read_energies
+from analysis.impact.series import read_energies
 from bench.common import bench_parser, markdown_table, write_report
 from builder.assembly import build_scene
 from builder.lammps_data import read_data, write_scene

@@ -24,11 +24,11 @@ import numpy as np
 
 from bench.common import bench_parser, markdown_table, write_report
 from ground.errors import InputError
-from runner.clusters import WORKERS
-from runner.driver import run_study
+from runner.cluster.driver import run_study
+from runner.cluster.workers import WORKERS
 from runner.options import DT, INTEGRATORS, NRESPA
-from runner.studies import load_study
 from runner.study import COT_GAMMA, SAMPLES, Study
+from runner.study.studies import load_study
 
 ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, the branch's top, sliding
 PASS = 2.0  # standard errors

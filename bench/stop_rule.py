@@ -21,7 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from analysis.series import read_series
+from analysis.impact.series import read_series
 from bench.common import SEED_COUNT, bench_parser, markdown_table, median, write_report
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene

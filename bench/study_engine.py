@@ -34,10 +34,10 @@ from pathlib import Path
 from bench.common import ROOT, add_repeats, bench_parser, markdown_table, median, write_report
 from ground.checks import Range
 from ground.gate import runs_folder
-from runner.clusters import ClusterSpec, dask_client
-from runner.driver import job_groups
-from runner.studies import load_study
+from runner.cluster.driver import job_groups
+from runner.cluster.workers import ClusterSpec, dask_client
 from runner.study import ANGLES, SAMPLES
+from runner.study.studies import load_study
 
 TASKS = Range(100, 1_000_000, integer=True)
 # The partitions path's builder (issue 28, measured on this machine): 40 ms
@@ -82,7 +82,7 @@ def tree_at(revision: str, folder: Path) -> Path:
 
 
 def scheduler_cost(tasks: int, idle: float = 10.0) -> dict:
-    """On the study's own local cluster (runner.clusters): the driver
+    """On the study's own local cluster (runner.cluster.workers): the driver
     process's CPU share while idle (Dask's housekeeping, paid per second), and
     per no-op task the wall time and the client and scheduler's CPU time (both
     run in this process)."""
@@ -227,9 +227,9 @@ def main(argv: list[str] | None = None) -> int:
                 ],
             ],
         )  # fmt: skip
-        + f"\n\nA task is {groups} impacts (runner.driver.job_groups), so Dask's cost per "
+        + f"\n\nA task is {groups} impacts (runner.cluster.driver.job_groups), so Dask's cost per "
         f"impact is a {groups}th of a task's. Idle, the driver process (a local cluster's "
-        f"scheduler with the study's settings, runner.clusters.HOUSEKEEPING) uses "
+        f"scheduler with the study's settings, runner.cluster.workers.HOUSEKEEPING) uses "
         f"{cost['housekeeping']:.1%} of a core: its heartbeats and health checks, paid per "
         "second whatever the impacts, so its share per impact falls as workers are added. "
         "The serial part s is what grows with the impacts: Dask's CPU time per task "

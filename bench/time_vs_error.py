@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.result import MAX_DRIFT
+from analysis.impact.result import MAX_DRIFT
 from bench.common import (
     bench_parser,
     loop_seconds,
@@ -77,7 +77,8 @@ DRIFT_NOTE = (
     "**The accuracy guard.** Every result.json records its energy drift (the change of the "
     "total energy over the initial kinetic energy) and is flagged (`drift_exceeded`, also a "
     f"column of impacts.csv) when it exceeds `--max-drift`, default {MAX_DRIFT:g} "
-    "(`analysis.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, naming dt."
+    "(`analysis.impact.result.MAX_DRIFT`); `python -m runner impact` and `run` then warn, "
+    "naming dt."
     " **What sets the drift on rough scenes** ([drift_floor.md](drift_floor.md), `python "
     "bench/drift_floor.py --docs`): not the lever rule, which is the exact gradient of "
     "V0 exp(-a l) (docs/contact.md), but the kinks of l over the rough wall's valley "
@@ -86,11 +87,12 @@ DRIFT_NOTE = (
     "energy error (F_before - F_after).v dt (1/2 - theta), theta the crossing's place in the "
     "step, of first order in dt and of either sign, for fourth-order schemes too. So a rough "
     "impact's drift is a random walk whose scale halves with dt. On chaotic scenes the step's "
-    "errors pick another trajectory from the chaotic spread (docs/validation_table.md), which "
-    "only ensemble means can check: [step_ensemble_verlet.md](step_ensemble_verlet.md) "
+    "errors pick another trajectory from the chaotic spread "
+    "(docs/benchmarks/validation_table.md), which only ensemble means can check: "
+    "[step_ensemble_verlet.md](step_ensemble_verlet.md) "
     "(`python bench/step_ensemble.py --samples 100 --docs`). A whole study's worst drifts "
     "at the default step, run again at smaller steps: [drift_tail.md](drift_tail.md) "
-    "(`python bench/drift_tail.py --impacts docs/results/impacts.csv --docs`). A step too "
+    "(`python bench/drift_tail.py --impacts docs/studies/results/impacts.csv --docs`). A step too "
     "large for the scene stops the run: `python -m runner impact --gamma 60 --seed 3 --dt "
     "0.02` stretches a wall segment past the contact's reach."
 )

@@ -149,7 +149,7 @@ def parser() -> OneLineParser:
     parser.add_argument(
         "--docs",
         action="store_true",
-        help="write the table into docs/validation_table.md (make validate does)",
+        help="write the table into docs/benchmarks/validation_table.md (make validate does)",
     )
     return parser
 
@@ -161,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
         out = require_out_folder("--out", args.out or runs_folder() / "validation")
         tables = validate(out, options)
         text = markdown(tables)
-        page = DOCS / "validation_table.md" if args.docs else out / "table.md"
+        page = DOCS / "benchmarks" / "validation_table.md" if args.docs else out / "table.md"
         if args.docs:  # make validate: the committed table, granted
             gate.grant(page)
         gate.write_text(

@@ -3,7 +3,7 @@
 - A folder a command writes into is checked where it really is: not inside
   the committed record or the code (ground.gate.protected_problem).
 - A study file names its page by a plain name (``page_problem``), never a
-  path; it writes docs/<page>.md, docs/<page>/ and docs/figures/<page>/ only.
+  path; it writes docs/studies/<page>/ only (its page, tables and figures).
 - A page in docs/ belongs to exactly one committed study file of studies/:
   it owns its page and the readings its page tabulates; any other study file
   (of one's own, or placed in studies/) may make a new page only where no
@@ -20,11 +20,11 @@ import subprocess
 from pathlib import Path
 
 from ground.errors import InputError
-from ground.paths import DOCS, ROOT
+from ground.paths import DOCS, ROOT, study_docs
 
 # A page's name: one plain word, which stays a file name in docs/ whatever
 # joins it (no separator, no '..', nothing LAMMPS reads). The tables of a
-# reading (docs/<reading>/, a study's --name) may have dots between words
+# reading (docs/studies/<reading>/, a study's --name) may have dots between words
 # (grazing_literal_v0.1), never two together or at an end.
 PLAIN_NAME = re.compile(r"[A-Za-z0-9_-]+")
 TABLE_NAME = re.compile(r"[A-Za-z0-9_-]+(\.[A-Za-z0-9_-]+)*")
@@ -88,7 +88,7 @@ def require_own_page(
     committed_file : bool
         Whether the file is a committed file of studies/.
     made_by : str, optional
-        The study whose tables docs/<page>/ holds from an earlier run, if any.
+        The study whose tables docs/studies/<page>/ holds from an earlier run, if any.
 
     Raises
     ------
@@ -114,13 +114,13 @@ def require_own_page(
             f"{where}: page {page!r} is named by studies/{naming[0]}.toml too; "
             "give the file a page of its own"
         )
-    if committed(DOCS / f"{page}.md", DOCS / page, DOCS / "figures" / page):
+    if committed(study_docs(page), DOCS / f"{page}.md", DOCS / page):
         raise InputError(
             f"{where}: page {page!r} is committed in docs/ and not this study's; "
             "give the file a page of its own"
         )
     if made_by is not None and made_by != study:
         raise InputError(
-            f"{where}: page {page!r} was made by the {made_by} study (docs/{page}/study.json); "
-            "give the file a page of its own"
+            f"{where}: page {page!r} was made by the {made_by} study "
+            f"(docs/studies/{page}/study.json); give the file a page of its own"
         )

@@ -31,7 +31,7 @@ STEPS = Range(1, 10_000_000, integer=True)  # every, check
 DUMP_EVERY = Range(0, 10_000_000, integer=True)
 NPROCS = Range(1, 4096, integer=True)
 DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
-# The energy drift above which a result is flagged (analysis/result.py).
+# The energy drift above which a result is flagged (analysis/impact/result.py).
 MAX_DRIFT = 0.05
 # rRESPA's split (the outer step, the contact's steps per step) that make bench
 # picks by the default's criteria (docs/benchmarks/time_vs_error.md); not the

@@ -45,8 +45,9 @@ MODEL_READINGS = {
     "surface_row": bodies.SURFACE_ROWS,
     "regular_surface": bodies.REGULAR_SURFACES,
 }
-# Each reading's default (the rule's pick: docs/model.md, docs/model_readings.md)
-# and what its choices mean, in the order of the "made by" command line.
+# Each reading's default (the rule's pick: docs/model.md,
+# docs/studies/model_readings/) and what its choices mean, in the order of
+# the "made by" command line.
 MODEL_OPTIONS = (
     ("contact_mass", "disk",
      "the m of the contact's V0 = a m c^2 R / 2: one point's mass, or the disk's"),
@@ -99,7 +100,7 @@ PAPER_CUTOFF = bodies.triangular_spacing(2 * REFERENCE_N_DISK / (8.0 * 2.0))
 # docs/benchmarks/stability_speeds.md, three seeds per point): every normal speed up
 # to 0.4 c at speeds along the wall up to 0.8 c; at 0.5 c and 1.0 c along the
 # wall segments stretch past the contact's reach. --vn stops at 0.3 c, the
-# speed study's last (docs/speed.md).
+# speed study's last (docs/studies/speed/speed.md).
 VN = Range(0.0, 0.3, low_open=True, unit="units of c")
 MAX_TANGENTIAL_SPEED = 0.8  # c
 # What a scene itself may be given: below the wave speed. bench/stability.py

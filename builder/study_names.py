@@ -1,8 +1,8 @@
 """Names a study file may give, as plain data: the readings of the scene by
 name (MODEL.md section 8), the kinds of page and the sections of a results
-page. Reading a study file (runner.study_file) checks its names against
+page. Reading a study file (runner.study.file) checks its names against
 these without importing what makes the pages (analysis.kinds,
-pages.sections, analysis.readings use them from here).
+pages.sections, analysis.kinds.readings use them from here).
 """
 
 from __future__ import annotations
@@ -103,7 +103,7 @@ LIMITS = {
         "contact_scaling": "physical",
     },
 }
-# What the disk hits in the symmetric references (analysis/references.py):
+# What the disk hits in the symmetric references (analysis/kinds/references.py):
 # a second disk, its own image, that image held, a wall built like a disk's
 # surface, the default wall.
 REFERENCES = {
@@ -114,7 +114,7 @@ REFERENCES = {
     "wall": {"target": "wall", "partner": "independent"},
 }
 # The references that meet one disk, not a pair: run at half the pair's speed
-# (analysis/references.py); here, so that the kind and its page share them.
+# (analysis/kinds/references.py); here, so that the kind and its page share them.
 ONE_BODY = ("image-held", "surface", "wall")
 # The named readings a study file's [scene] may give, by key.
 NAMED = {"wall": WALLS, "model": MODELS, "limit": LIMITS, "reference": REFERENCES}

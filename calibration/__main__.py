@@ -18,7 +18,7 @@ from ground.paths import DOCS
 from .stretch import run_stretch
 from .table import calibrate, markdown
 
-DOC = DOCS / "materials.md"
+DOC = DOCS / "calibration" / "materials.md"
 STRIPS = Range(2, 1_000, integer=True)
 PULL_ANGLE = Range(-180.0, 180.0, unit="degrees")
 
@@ -61,7 +61,7 @@ def parser() -> OneLineParser:
     run = commands.add_parser(
         "run",
         help="calibrate every lattice of the study: "
-        "calibration/materials.json and docs/materials.md",
+        "calibration/materials.json and docs/calibration/materials.md",
     )
     run.add_argument(
         "--seeds",
@@ -87,7 +87,7 @@ def parser() -> OneLineParser:
         "--install",
         action="store_true",
         help="write calibration/materials.json, which every scene reads, and "
-        "docs/materials.md instead (make calibrate does)",
+        "docs/calibration/materials.md instead (make calibrate does)",
     )
     strip = commands.add_parser("strip", help="stretch one strip and print what it gives")
     strip.add_argument("--lattice", choices=("random", "triangular", "square"), default="random")

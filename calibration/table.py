@@ -199,7 +199,7 @@ def anisotropy(materials: list[dict]) -> list[dict]:
 
 
 def markdown(table: dict) -> str:
-    """The tables for docs/materials.md."""
+    """The tables for docs/calibration/materials.md."""
 
     def value(entry: dict, key: str) -> str:
         if entry["samples"] > 1:

@@ -5,7 +5,7 @@ text (an error names the option, argparse adds it), and the dataclasses that
 hold the value call ``Range.check`` with the field's name. Both refuse
 non-finite numbers and say the allowed range in the same words. Folders that
 a command writes into are ``OutFolder``s, checked before any work; files and
-folders it reads are ``InPath``s. tests/cli/test_bad_input.py feeds every option
+folders it reads are ``InPath``s. tests/runner/cli/test_bad_input.py feeds every option
 of every entry point the values these refuse.
 """
 

@@ -17,11 +17,27 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
+# Each study's generated record: its page, tables, figures and run.json in
+# docs/studies/<page>/ (the page docs/studies/<page>/<page>.md); the top of
+# docs/ holds only hand-written pages.
+STUDY_DOCS = DOCS / "studies"
 DECKS = ROOT / "decks"
 STUDIES = ROOT / "studies"
 # What make setup builds: the styles' libraries, LAMMPS's headers, the
 # contact's tables, the sampler's cache.
 BUILD = ROOT / "build"
+
+
+def study_docs(page: str) -> Path:
+    """A study's folder in docs/: its page, tables, figures and run.json."""
+    return STUDY_DOCS / page
+
+
+def study_page(page: str) -> Path:
+    """A study's generated page, docs/studies/<page>/<page>.md."""
+    return study_docs(page) / f"{page}.md"
+
+
 # The project's folders that no --out, --name or $IMPACT_RUNS may point into:
 # the committed record, the code, and what make setup builds.
 PROTECTED = (

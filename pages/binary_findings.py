@@ -57,7 +57,7 @@ def e_beside_the_wall(numbers: dict, checks: dict, name: str) -> dict:
     """Per lattice: at the angles both targets' e is robust, the verdicts."""
     out = {}
     disk_check = checks.get(THIS_STUDY)
-    wall_check = checks.get(f"the wall, docs/{name}")
+    wall_check = checks.get(f"the wall, docs/studies/{name}")
     for lattice, entry in numbers["lattices"].items():
         kept = []
         for j, gamma in enumerate(entry["gamma_deg"]):

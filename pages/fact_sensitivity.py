@@ -1,12 +1,12 @@
-"""The fact sensitivity page (analysis.fact_sensitivity's numbers): the
+"""The fact sensitivity page (analysis.kinds.fact_sensitivity's numbers): the
 facts at every point of the sweep, and their figure."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from analysis.fact_sensitivity import AXES, FACTS, facts, label, points
-from analysis.readings import Setup
+from analysis.kinds.fact_sensitivity import AXES, FACTS, facts, label, points
+from analysis.kinds.readings import Setup
 
 from .render import render
 from .text import markdown_table

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from analysis.table import near_the_ends
-from analysis.theory import Compliant, compliant_beta, walton_beta
+from analysis.theory.tangential import Compliant, compliant_beta, walton_beta
 
 LABELS = {
     "random": "random",
@@ -139,7 +139,7 @@ def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
     means : list of dict
         Means per lattice and angle with their errors (means.csv's rows).
     fits : dict
-        The study's estimates (fits.json, ``analysis.estimates.study_estimates``).
+        The study's estimates (fits.json, ``analysis.statistics.estimates.study_estimates``).
     folder : pathlib.Path
         Where the figures go; created if missing.
 

@@ -21,7 +21,7 @@ from types import ModuleType
 from analysis import speed, study_numbers
 from analysis.grazing import has_grazing_angles, readings_numbers
 from analysis.kinds import READINGS_KINDS
-from analysis.readings import Setup, read_record, read_rows
+from analysis.kinds.readings import Setup, read_record, read_rows
 from analysis.study_tables import read_tables
 from analysis.table import MEAN_COLUMNS, rounded, write_csv
 from ground.gate import gate, make_folder
@@ -51,13 +51,9 @@ class StudyTables:
 
     @property
     def figure_dir(self) -> Path:
-        """Where the figures go: beside the tables, or, for a page in docs/,
-        docs/figures/ (the paper's results.md) or docs/figures/<page>/ (the
-        others, whose figures would otherwise take the paper's names)."""
-        if self.page.parent == self.out:
-            return self.out / "figures"
-        stem = self.page.stem
-        return self.page.parent / "figures" / ("" if stem == "results" else stem)
+        """Where the figures go: figures/ beside the page (in docs/, the
+        study's folder docs/studies/<page>/, which holds its tables too)."""
+        return self.page.parent / "figures"
 
     @property
     def shown_figures(self) -> str:
@@ -151,9 +147,9 @@ class BinaryPage(GrazingPage):
         for name, numbers in fits["wall_comparison"].items():
             binary.draw(numbers, study.figure_dir, name)
         extra["wall_comparison"] = binary.section(
-            fits["wall_comparison"], study.shown_figures, fits["normals"]
+            fits["wall_comparison"], study.shown_figures, fits["normals"], study.page.parent
         )
-        extra["normals"] = normals.section(fits["normals"])
+        extra["normals"] = normals.section(fits["normals"], study.page.parent)
         extra["findings"] = binary_findings.findings_section(fits, study.info)
         return extra
 
@@ -197,9 +193,9 @@ def readings_module(kind: str) -> ModuleType:
 
 def readings_page(kind: str, tables: Path, page: Path, setup: Setup) -> Path:
     """The page of a readings study from its table and record in ``tables``
-    (rows.csv, run.json); its figures go into figures/<page's name>/ beside it."""
+    (rows.csv, run.json); its figures go into figures/ beside it."""
     module = readings_module(kind)
-    figure_dir = page.parent / "figures" / page.stem
+    figure_dir = page.parent / "figures"
     gate(page)  # the one gate of every write (ground.gate)
     if hasattr(module, "FIGURE"):
         make_folder(figure_dir)

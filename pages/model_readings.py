@@ -1,12 +1,12 @@
-"""The model readings' page (analysis.model_readings's numbers): every
+"""The model readings' page (analysis.kinds.model_readings's numbers): every
 reading's five facts, their misses and the rule's pick."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from analysis.model_readings import FACTS, away, rank_summaries, summaries_of
-from analysis.readings import Setup
+from analysis.kinds.model_readings import FACTS, away, rank_summaries, summaries_of
+from analysis.kinds.readings import Setup
 
 from .render import render
 from .text import markdown_table

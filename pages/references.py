@@ -1,4 +1,4 @@
-"""The references' page (analysis.references computes its numbers): its
+"""The references' page (analysis.kinds.references computes its numbers): its
 tables' cells, its figure, and the prose of pages/templates/references.md.j2."""
 
 from __future__ import annotations
@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.readings import ONE_BODY, Setup
-from analysis.references import (
+from analysis.kinds.readings import ONE_BODY, Setup
+from analysis.kinds.references import (
     CHI2_LIMIT,
     ORDER,
     QUANTITIES,

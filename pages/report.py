@@ -6,12 +6,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from analysis.failures import failure_causes, genuine
+from analysis.impact.failures import failure_causes, genuine
 from analysis.study_tables import (
-    public_record,
+    RUN_RECORD,
     read_failure,
     read_tables,
     record_timings,
+    run_record,
+    write_records,
     write_study_tables,
 )
 from analysis.table import collect
@@ -44,8 +46,8 @@ def report(
     preset : str
         The preset the study was run from, for the command on the page.
     tables : pathlib.Path, optional
-        A folder that gets a copy of the tables and study.json, from which
-        ``report_from_tables`` remakes the page (docs/results/ for the paper).
+        A folder that gets a copy of the tables, study.json and run.json, from which
+        ``report_from_tables`` remakes the page (docs/studies/results/ for the paper).
     readings : dict of str to pathlib.Path, optional
         Table folders of the same study under other options, by name, which a
         grazing page tabulates (``grazing.readings_section``).
@@ -77,12 +79,18 @@ def report(
         readings,
         sections,
     )
+    (study.folder / RUN_RECORD).write_text(run_record(info, rows))
     if tables is not None:
         make_folder(tables)
+        # every impact as the committed tables have it: the run's provenance stays theirs
+        before = tables / "impacts.csv"
+        reproduced = (
+            before.is_file() and before.read_bytes() == (study.folder / "impacts.csv").read_bytes()
+        )
         for name in ("impacts.csv", "means.csv", "fits.json", "speed.json", "failed.csv"):
             if (study.folder / name).exists():  # a speed study has speed.json instead of fits
                 (tables / name).write_bytes((study.folder / name).read_bytes())
-        (tables / "study.json").write_text(public_record(info))
+        write_records(info, rows, tables, keep_run=reproduced)
     return summary
 
 
@@ -95,7 +103,7 @@ def report_from_tables(
     readings: dict[str, Path] | None = None,
     sections: tuple[str, ...] | None = None,
 ) -> dict:
-    """The page and figures of a study from its tables alone (docs/results/).
+    """The page and figures of a study from its tables alone (docs/studies/results/).
 
     Parameters
     ----------
@@ -120,7 +128,7 @@ def report_from_tables(
     out = Path(out) if out is not None else Path(tables)
     gate(page)
     make_folder(out)
-    (out / "study.json").write_text(public_record(info))
+    write_records(info, rows, out)
     return render(
         info,
         rows,

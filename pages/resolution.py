@@ -1,4 +1,4 @@
-"""The resolution study's page (analysis.resolution's numbers): per reading
+"""The resolution study's page (analysis.kinds.resolution's numbers): per reading
 and lattice the quantities against N, their limits with the form's band,
 the paper's claims per resolution, the differences between resolutions and
 the multilevel plan, two figures and two CSV tables beside them; the prose
@@ -10,10 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis import extrapolation
-from analysis.estimates import CHI2_LIMIT
-from analysis.readings import LIMITS, Setup
-from analysis.resolution import (
+from analysis.kinds.readings import LIMITS, Setup
+from analysis.kinds.resolution import (
     DRIFT_SHARE,
     FAILED_SHARE,
     QUANTITIES,
@@ -26,8 +24,10 @@ from analysis.resolution import (
     order,
     summaries,
 )
-from analysis.resolution_claims import CLAIMS, claims_table
-from analysis.seeds import BOOTSTRAP_FROM
+from analysis.statistics import extrapolation
+from analysis.statistics.estimates import CHI2_LIMIT
+from analysis.statistics.resolution_claims import CLAIMS, claims_table
+from analysis.statistics.seeds import BOOTSTRAP_FROM
 
 from . import resolution_tables as tables
 from .render import render

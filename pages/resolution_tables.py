@@ -1,4 +1,4 @@
-"""The resolution page's tables (analysis.resolution's numbers in Markdown
+"""The resolution page's tables (analysis.kinds.resolution's numbers in Markdown
 and CSV): the limits, the paper's claims per resolution, the differences
 between resolutions, the multilevel plan and each reading against N."""
 
@@ -7,8 +7,8 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from analysis.extrapolation import FIT_FROM, FORMS
-from analysis.resolution import FITTED, QUANTITIES, order
+from analysis.kinds.resolution import FITTED, QUANTITIES, order
+from analysis.statistics.extrapolation import FIT_FROM, FORMS
 
 from .text import markdown_table, pm
 

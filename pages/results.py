@@ -5,8 +5,9 @@ The prose: pages/templates/results/."""
 
 from __future__ import annotations
 
-from analysis import claims, fit_verdicts, measures, poisson, table
-from analysis.failures import drifted, outcome
+from analysis import poisson, table
+from analysis.impact.failures import drifted, outcome
+from analysis.statistics import claims, fit_verdicts, measures
 
 from .command import made_by
 from .render import macro, render

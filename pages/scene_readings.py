@@ -1,4 +1,4 @@
-"""The scene readings' page (analysis.scene_readings's numbers): the
+"""The scene readings' page (analysis.kinds.scene_readings's numbers): the
 readings side by side, their ranking, the figure of e and beta per wall."""
 
 from __future__ import annotations
@@ -8,8 +8,15 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.readings import N_WALL, WALL_FIXED, WALL_KA, Setup, distance_from_text, wall_label
-from analysis.scene_readings import (
+from analysis.kinds.readings import (
+    N_WALL,
+    WALL_FIXED,
+    WALL_KA,
+    Setup,
+    distance_from_text,
+    wall_label,
+)
+from analysis.kinds.scene_readings import (
     BANDS,
     BETA0_NEAR,
     BETA0_PAPER,
@@ -141,7 +148,7 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     ]
     table = [table_row(r, "random", summaries[r]) for r in labels]
     # the readings that lattice ran on: the best of the ranking when it ran,
-    # which the weights of the fits (analysis.fits.means) have moved since
+    # which the weights of the fits (analysis.statistics.fits.means) have moved since
     for lattice in then:
         for reading in ranking:
             these = [r for r in rows if r["reading"] == reading and r["study_lattice"] == lattice]

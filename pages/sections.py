@@ -1,11 +1,11 @@
 """The sections a results page may have (SECTIONS, which a study file's
 ``sections`` picks from), and those every study's page has alike: its
 failures, its inaccurate impacts, the wall's ends (macros of
-pages/templates/sections.md.j2, given analysis.failures' numbers)."""
+pages/templates/sections.md.j2, given analysis.impact.failures' numbers)."""
 
 from __future__ import annotations
 
-from analysis.failures import outcome
+from analysis.impact.failures import outcome
 
 # The sections a results page may have, in their order: plain data in
 # builder.study_names, which a study file is checked against.

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from analysis import speed
-from analysis.failures import outcome
+from analysis.impact.failures import outcome
 from builder.materials import STUDY_LATTICES as LATTICES
 
 from .command import made_by

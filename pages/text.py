@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+from analysis.study_tables import PROVENANCE
+
 
 def pm(value, sd=None, digits: int = 3) -> str:
     """value +- sd, or '-' without a value."""
@@ -32,7 +34,7 @@ def markdown_table(header: list[str], rows: list[list[str]]) -> str:
 # What a reading's study.json may differ in from the study's and still be a
 # reading of it: everything but its name and the records of its run (how
 # long it took, what its study file said).
-NOT_A_READING = ("name", "wall_clock", "common_wall", "lammps_seconds", "source")
+NOT_A_READING = ("name", "common_wall", "source", *PROVENANCE)
 
 
 def reading_differences(study: dict, reading: dict) -> str:

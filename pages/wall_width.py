@@ -1,4 +1,4 @@
-"""The wall width page (analysis.wall_width's numbers): per angle and width,
+"""The wall width page (analysis.kinds.wall_width's numbers): per angle and width,
 e and beta with their standard errors, the contact time, the sides. The
 prose: pages/templates/wall_width.md.j2."""
 
@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from analysis.readings import Setup
-from analysis.wall_width import summary
+from analysis.kinds.readings import Setup
+from analysis.kinds.wall_width import summary
 
 from .render import render
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.result import analyse_run, write_json_atomically
-from analysis.series import BINARY_COLUMNS, COLUMNS
+from analysis.impact.result import analyse_run, write_json_atomically
+from analysis.impact.series import BINARY_COLUMNS, COLUMNS
 from builder.lammps_data import read_data
 from ground import gate
 from ground.checks import Range
@@ -258,7 +258,7 @@ def run_reference(folder: Path | str, options: ReferenceOptions) -> dict:
     Returns
     -------
     dict
-        The result (``analysis.result.analyse_run``), as written to result.json.
+        The result (``analysis.impact.result.analyse_run``), as written to result.json.
     """
     folder = Path(folder)
     for name in ("series.dat", "energy.dat", "run.json", "result.json"):

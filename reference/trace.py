@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.restitution import rebound
+from analysis.impact.restitution import rebound
 
 from .contact import InsideWall, closest_features
 from .run import WALL_HELD, Observer, ReferenceOptions, Stepper, Unstable, load_model
@@ -90,7 +90,7 @@ class Trace:
     disk_mass: float
     disk_inertia: float
     velocity_in: np.ndarray  # the disk's initial centre-of-mass velocity
-    e: float  # of the run, as analysis.restitution computes them
+    e: float  # of the run, as analysis.impact.restitution computes them
     beta: float
 
     def split(self) -> dict[str, float]:

@@ -24,8 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.restitution import contact_window
-from analysis.series import read_series
+from analysis.impact.restitution import contact_window
+from analysis.impact.series import read_series
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson

@@ -6,7 +6,7 @@ import json
 import math
 from pathlib import Path
 
-from analysis.result import analyse_run, write_json_atomically
+from analysis.impact.result import analyse_run, write_json_atomically
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
@@ -66,7 +66,7 @@ def run_scene(
     Returns
     -------
     dict
-        The result (``analysis.result.analyse_run``), as written to result.json.
+        The result (``analysis.impact.result.analyse_run``), as written to result.json.
 
     Raises
     ------

@@ -1,12 +1,12 @@
 """The letter's mechanism for e > 1, checked from dumps: the wall's tilt under the disk.
 
-    python -m runner tilt [--tables docs/grazing] [--gamma G] [--dump-every 10]
+    python -m runner tilt [--tables docs/studies/grazing] [--gamma G] [--dump-every 10]
                           [--docs | --out FOLDER]
 
 From a grazing study's committed tables (runner study grazing), at the angle
 of the largest mean e (or --gamma), the impact with the largest e and the
 one with the smallest are run again, on the study's own scenes and settings
-(runner.study.Study.spec), with a dump. For each, analysis/tilt.py measures
+(runner.study.Study.spec), with a dump. For each, analysis/impact/tilt.py measures
 the tilt that the wall's deformation adds to its surface under the disk,
 frame by frame, its mean over the contact weighted by the contact force,
 and the share of the normal approach speed that this tilt adds from the
@@ -25,18 +25,18 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.tilt import surface_tilt, tilt_effect, tilted_e
+from analysis.impact.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
 from ground.gate import grant, make_folder
-from ground.paths import ROOT
+from ground.paths import ROOT, study_docs
 from pages.report import shown_path
 from pages.text import markdown_table
 
 from .impact import run_impact
-from .provenance import machine
 from .study import Study, runs_folder
+from .study.provenance import machine
 
 DUMP_EVERY = Range(1, 10_000, integer=True)
 
@@ -98,7 +98,7 @@ def add_tilt_arguments(parser: argparse.ArgumentParser) -> None:
         "--tables",
         type=InPath(needs=("impacts.csv", "study.json")),
         default=None,
-        help="a grazing study's tables: impacts.csv and study.json (default: docs/grazing)",
+        help="a grazing study's tables: impacts.csv and study.json (default: docs/studies/grazing)",
     )
     parser.add_argument(
         "--gamma",
@@ -133,7 +133,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
         If the tables are missing or --gamma is not one of their angles.
     """
     # the default is checked here; a given folder was by its type
-    tables = Path(args.tables) if args.tables else ROOT / "docs" / "grazing"
+    tables = Path(args.tables) if args.tables else study_docs("grazing")
     if not (tables / "impacts.csv").is_file() or not (tables / "study.json").is_file():
         raise InputError(f"--tables: {tables} holds no study's impacts.csv and study.json")
     try:
@@ -194,7 +194,7 @@ def wall_tilt(args: argparse.Namespace) -> Path:
         "angle of the largest mean e unless --gamma; the impacts of largest and smallest e "
         "there, run again on the study's scenes and settings with a dump every "
         f"{args.dump_every} steps. Tilt: the slope of the wall surface points' displacement "
-        "within 0.5 R of the disk centre's x (analysis/tilt.py), positive where the surface "
+        "within 0.5 R of the disk centre's x (analysis/impact/tilt.py), positive where the surface "
         "rises in +x, ahead of the disk. Force-weighted: its mean over the contact weighted "
         "by the disk's wall-normal contact force. tan(gamma) tan(tilt): the share of the "
         "normal approach speed that the tilt adds from the tangential motion (the disk meets "

@@ -26,7 +26,13 @@ BELOW_RUNNER = ("builder", "analysis", "pages", "reference", "calibration")
 def packages() -> list[str]:
     """The project's top-level packages, as pyproject.toml installs them."""
     config = tomllib.loads((ROOT / "pyproject.toml").read_text())
-    return config["tool"]["setuptools"]["packages"]
+    return [name for name in config["tool"]["setuptools"]["packages"] if "." not in name]
+
+
+def subpackages() -> list[str]:
+    """The packages pyproject.toml installs inside the top-level ones."""
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    return [name for name in config["tool"]["setuptools"]["packages"] if "." in name]
 
 
 def module_name(path: Path) -> str:
@@ -170,3 +176,31 @@ def test_no_import_circle(package):
     """No circle through a module of ``package`` (one through two packages
     fails for both)."""
     assert [c for c in cycles(graph()) if any(m.split(".")[0] == package for m in c)] == []
+
+
+def test_every_subpackage_is_installed():
+    """A folder with an __init__.py inside a package is listed in pyproject.toml
+    (setuptools installs only the packages it names)."""
+    found = {
+        module_name(path.parent)
+        for package in packages()
+        for path in (ROOT / package).rglob("__init__.py")
+        if path.parent != ROOT / package
+    }
+    assert found == set(subpackages())
+
+
+# The most modules a folder of runner/ or analysis/ holds directly: more, and a
+# reader no longer sees from the names how an impact becomes a page (issue 47).
+ROOM = 15
+
+
+@pytest.mark.parametrize("package", ["runner", "analysis"])
+def test_rooms_are_small(package):
+    rooms = {path.parent for path in (ROOT / package).rglob("*.py")}
+    crowded = {
+        str(room.relative_to(ROOT)): n
+        for room in rooms
+        if (n := len(list(room.glob("*.py")))) > ROOM
+    }
+    assert crowded == {}

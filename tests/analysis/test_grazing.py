@@ -90,7 +90,7 @@ def test_a_reading_is_a_row_of_the_page_with_what_differs(tmp_path):
 
 
 def independent_angles(angles: int, seeds: int, rng_seed: int):
-    from analysis.seeds import SeedTable
+    from analysis.statistics.seeds import SeedTable
 
     rng = np.random.default_rng(rng_seed)
     e = 1.0 + 0.1 * rng.standard_normal((seeds, angles))

@@ -1,4 +1,4 @@
-"""The three normals of a binary impact (analysis/binary.py) and the wall's
+"""The three normals of a binary impact (analysis/impact/binary.py) and the wall's
 impulse normal (analysis/normal_check.py): where they must agree they do,
 where the contact turns the line of centres they differ, and the impulse's
 normal is the contact's even with friction."""
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from analysis.binary import binary_normals, first_touch, impulse_normal
+from analysis.impact.binary import binary_normals, first_touch, impulse_normal
+from analysis.impact.series import BINARY_COLUMNS
 from analysis.normal_check import robustness, wall_impulse
-from analysis.series import BINARY_COLUMNS
 
 MASSES = (800.0, 790.0)
 

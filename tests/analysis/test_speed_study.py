@@ -12,8 +12,8 @@ import pytest
 from analysis.speed import power_law, power_law_range
 from builder.scene import SceneSpec
 from ground.errors import InputError
-from runner.studies import load_study
 from runner.study import LATTICES, Study
+from runner.study.studies import load_study
 from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables
 

@@ -4,7 +4,7 @@ The benchmarks are not run by the tests (they time things), so a script
 whose imports broke would otherwise go unnoticed until someone ran it. Each
 answers --help; every bad combination of options exits 2 with one line on
 stderr that names the option, before anything is written into docs/ or
-runs/. Bad values of single options: tests/cli/test_bad_input.py, which covers
+runs/. Bad values of single options: tests/runner/cli/test_bad_input.py, which covers
 the benchmarks with every other entry point.
 """
 
@@ -25,10 +25,14 @@ SCRIPTS = sorted(
 COMBINATIONS = [
     (
         "drift_tail.py",
-        ["--impacts", "docs/results/impacts.csv", "--dts", "0.002", "0.002"],
+        ["--impacts", "docs/studies/results/impacts.csv", "--dts", "0.002", "0.002"],
         "--dts",
     ),
-    ("drift_tail.py", ["--impacts", "docs/results/impacts.csv", "--worst", "10000"], "--worst"),
+    (
+        "drift_tail.py",
+        ["--impacts", "docs/studies/results/impacts.csv", "--worst", "10000"],
+        "--worst",
+    ),
     ("drift_tail.py", ["--impacts", "README.md"], "--impacts"),
     ("large_disk.py", ["--ranks", "1", "1"], "--ranks"),
     ("resolution_cost.py", ["--sizes", "800", "1600", "800"], "--sizes"),
@@ -40,7 +44,7 @@ COMBINATIONS = [
     ("time_vs_error.py", ["--summarise", "--out", "{tmp}"], "--summarise"),
 ]
 # What an option needs besides the one under test.
-REQUIRED = {"drift_tail.py": ["--impacts", "docs/results/impacts.csv"]}
+REQUIRED = {"drift_tail.py": ["--impacts", "docs/studies/results/impacts.csv"]}
 # What starts the work of a benchmark or writes its page: a case that reached
 # one of them was not refused, and stops there rather than running for hours.
 WORK = (

@@ -4,7 +4,7 @@ level's error is sqrt(bias^2 + stat^2) against the limit of every level."""
 import csv
 import math
 
-from analysis import resolution
+from analysis.kinds import resolution
 from bench import resolution_error
 from ground.paths import ROOT
 
@@ -15,7 +15,7 @@ SEEDS = ("1", "2", "3", "4")
 def small_tables(tmp_path):
     """The committed profile rows at three levels and four seeds, each impact
     timed at its disk's points in seconds (a made-up timing)."""
-    source = ROOT / "docs" / "resolution_profile" / "rows.csv"
+    source = ROOT / "docs" / "studies" / "resolution_profile" / "rows.csv"
     with open(source) as f:
         reader = csv.DictReader(f)
         columns = reader.fieldnames

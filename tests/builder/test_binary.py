@@ -9,8 +9,8 @@ import sys
 import numpy as np
 import pytest
 
-from analysis.binary import apse, binary_rebound, momentum_change
-from analysis.series import BINARY_COLUMNS
+from analysis.impact.binary import apse, binary_rebound, momentum_change
+from analysis.impact.series import BINARY_COLUMNS
 from builder.assembly import build_scene
 from builder.binary import SURFACE_RADIUS, counter_clockwise
 from builder.scene import DISK, SceneSpec

@@ -17,8 +17,8 @@ from builder.assembly import build_scene
 from builder.lammps_data import data_file_text
 from builder.materials import calibrated
 from builder.scene import DISK, SceneSpec, wall_spring_constant
-from runner.studies import load_study
 from runner.study import LATTICES, Study
+from runner.study.studies import load_study
 
 
 def section(text: str, header: str) -> list[str]:
@@ -99,7 +99,7 @@ def test_the_wall_ka_is_the_random_disk_s_whatever_the_disk():
 def test_a_result_on_another_wall_is_set_aside_and_runs_again(tmp_path):
     """A study resumed after the change must not mix the old walls' results
     (the triangular and square disks' walls of before) with the common wall's."""
-    from runner.folders import OTHER_WALL, set_aside_if_other_wall, state
+    from runner.study.folders import OTHER_WALL, set_aside_if_other_wall, state
 
     study = load_study("paper")
     job = {"lattice": "square_nu0.3", "seed": 7, "gamma": 45.0, "folder": str(tmp_path / "a")}

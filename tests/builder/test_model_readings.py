@@ -19,8 +19,8 @@ from builder.materials import square_ratio_for_poisson
 from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec
 from ground.errors import InputError
 from runner.__main__ import main as runner_main
-from runner.studies import load_study
 from runner.study import Study
+from runner.study.studies import load_study
 
 DELTA = 0.03
 

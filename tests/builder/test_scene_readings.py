@@ -68,14 +68,14 @@ def test_held_points_are_the_reading_s(wall_fixed, rows):
 
 
 def test_the_default_scene_is_the_chosen_reading():
-    """The rule's pick of MODEL.md section 8 (docs/model_readings.md,
+    """The rule's pick of MODEL.md section 8 (docs/studies/model_readings/model_readings.md,
     docs/model.md): 1600 wall points, ten times the random disk's ka, the sides
     held, V0 from the disk's mass; every study of a results page and the command
     line run it (the readings studies run the others on purpose)."""
     spec = SceneSpec()
     chosen = (1600, 10.0, "sides", "disk")
     assert (spec.n_wall, spec.wall_ka, spec.wall_fixed, spec.contact_mass) == chosen
-    from runner.studies import all_studies
+    from runner.study.studies import all_studies
 
     for described in all_studies().values():
         study = described.study

@@ -26,7 +26,7 @@ from fractions import Fraction
 
 import pytest
 
-from analysis.result import MAX_DRIFT
+from analysis.impact.result import MAX_DRIFT
 from builder.scene import SceneSpec
 from ground.paths import ROOT
 from runner.options import AUTO, DEFAULT_DT, RESPA_DT, RESPA_NRESPA, SERIES_INTERVAL, RunOptions

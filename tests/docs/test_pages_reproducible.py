@@ -8,14 +8,15 @@ import subprocess
 
 import pytest
 
-from runner.studies import built_in_pages
+from ground.paths import study_docs
+from runner.study.studies import built_in_pages
 from tests.helpers import ROOT
 
 DOCS = ROOT / "docs"
 WITH_TABLES = [
     name
     for name, page in built_in_pages()[0].items()
-    if ((DOCS / page / "study.json").is_file() or (DOCS / page / "rows.csv").is_file())
+    if (study_docs(page) / "study.json").is_file() or (study_docs(page) / "rows.csv").is_file()
 ]
 
 

@@ -3,6 +3,8 @@ its committed page made again from the committed tables."""
 
 from __future__ import annotations
 
+import csv
+
 import numpy as np
 import pytest
 
@@ -58,13 +60,14 @@ def test_only_impacts_both_studies_have_are_compared():
 
 @pytest.mark.slow
 def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
-    """docs/binary_grazing.md from docs/binary_grazing/ and the walls'
-    tables its study file names (docs/grazing/, docs/binary_grazing_wall_v0.005/):
+    """docs/studies/binary_grazing/binary_grazing.md from its folder and the walls'
+    tables its study file names (docs/studies/grazing/,
+    docs/studies/binary_grazing_wall_v0.005/):
     the same page, but for where it says its files are."""
     from pages.report import report_from_tables
-    from runner.studies import study_file
+    from runner.study.studies import study_file
 
-    docs = ROOT / "docs"
+    docs = ROOT / "docs" / "studies"
     page = tmp_path / "binary_grazing.md"
     report_from_tables(
         docs / "binary_grazing",
@@ -74,15 +77,15 @@ def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
         readings={name: docs / name for name in study_file("binary_grazing").readings},
         sections=study_file("binary_grazing").sections,
     )
-    made = page.read_text().replace(str(tmp_path / "tables"), "docs/binary_grazing")
-    assert made == (docs / "binary_grazing.md").read_text()
+    made = page.read_text().replace(str(tmp_path / "tables"), "docs/studies/binary_grazing")
+    assert made == (docs / "binary_grazing" / "binary_grazing.md").read_text()
 
 
 def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():
     """K = (1/M_A + 1/M_B + R^2/I_A + R^2/I_B) / (1/M_A + 1/M_B): one disk's
     1 + MR^2/I for two alike; a partner of half the mass and inertia, 1 + (1/rA
     + 2/rB) / 3."""
-    from analysis.estimates import two_body_k
+    from analysis.statistics.estimates import two_body_k
 
     alike = {"n_disk_points": 800, "n_target_points": 800}
     alike.update(disk_inertia_ratio=0.51, target_inertia_ratio=0.51)
@@ -122,7 +125,7 @@ def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
     """Two disks whose measured cot gamma is half the wall's at every angle:
     each target is fitted only at the angles inside the common range."""
     from analysis.binary_comparison import common_range
-    from analysis.seeds import seed_tables
+    from analysis.statistics.seeds import seed_tables
 
     wall = impact_rows("random", WALL_BETA, seeds=6)
     disks = binary(wall, 0.0)
@@ -137,9 +140,10 @@ def test_the_fits_compare_the_targets_over_the_cot_gamma_range_both_cover():
     assert np.all((cot_wall[keep_wall] >= low) & (cot_wall[keep_wall] <= high))
 
 
-def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
-    """The comparison's row shows e only where the normals' check finds it
-    robust on both targets; elsewhere 'withheld', and its verdict too."""
+def test_an_e_the_normals_disagree_on_is_withheld_on_the_page(tmp_path):
+    """The comparison's table (comparison.csv beside the page) shows e only
+    where the normals' check finds it robust on both targets; elsewhere it
+    is blank and its verdict 'withheld', which the page counts."""
     from pages.binary import section
 
     wall = impact_rows("random", WALL_BETA, seeds=8)
@@ -156,8 +160,13 @@ def test_an_e_the_normals_disagree_on_is_withheld_on_the_page():
             }
         },
     }
-    lines = section({"w": numbers}, "figures", {"two disks (this study)": check}).splitlines()
-    rows = [x for x in lines if x.startswith("| ") and not x.startswith("| gamma")]
-    rows = [x for x in rows if x.split(" | ")[0].lstrip("| ").replace(".", "").isdigit()]
-    assert "withheld" in rows[2] and rows[2].count("withheld") == 3  # e disks, difference, verdict
-    assert all("withheld" not in x for j, x in enumerate(rows) if j != 2)
+    text = section({"w": numbers}, "figures", {"two disks (this study)": check}, tmp_path)
+    with (tmp_path / "comparison.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert len(rows) == len(gammas)
+    assert rows[2]["e_disk"] == rows[2]["e_difference"] == "" and rows[2]["e_wall"] != ""
+    assert rows[2]["e_verdict"] == "withheld"
+    assert all(
+        r["e_disk"] != "" and r["e_verdict"] != "withheld" for j, r in enumerate(rows) if j != 2
+    )
+    assert "withheld at 1;" in text and "(comparison.csv)" in text

@@ -1,8 +1,8 @@
 """The study's tables: contacts that reached the wall's ends are counted and
 their angles left out of the fits that must not see them; failures grouped."""
 
-from analysis.estimates import clear_angles
-from analysis.seeds import seed_tables
+from analysis.statistics.estimates import clear_angles
+from analysis.statistics.seeds import seed_tables
 from analysis.table import mean_rows
 
 
@@ -44,7 +44,7 @@ def test_near_side_counts_and_clear_angles():
 
 
 def test_failures_are_grouped_by_cause_with_their_angles_and_seeds():
-    from analysis.failures import failure_causes
+    from analysis.impact.failures import failure_causes
     from pages.sections import failure_section
 
     slid = (

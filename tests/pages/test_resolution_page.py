@@ -1,5 +1,5 @@
 """The resolution page (pages.resolution, pages.resolution_tables) from rows
-of any reading and any levels, and the study's plan (analysis.resolution)."""
+of any reading and any levels, and the study's plan (analysis.kinds.resolution)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from analysis import resolution
-from analysis.readings import Setup
-from analysis.theory import walton_beta
+from analysis.kinds import resolution
+from analysis.kinds.readings import Setup
+from analysis.theory.tangential import walton_beta
 from pages import resolution_tables
 from pages.resolution import page
 from tests.synthetic import impact_rows

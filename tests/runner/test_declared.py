@@ -89,7 +89,7 @@ def test_reading_a_study_file_imports_nothing_of_analysis_and_fills_no_registry(
     code = (
         "import sys\n"
         "import runner.study\n"
-        "from runner.studies import all_studies, load_study\n"
+        "from runner.study.studies import all_studies, load_study\n"
         "files = all_studies()\n"
         "assert load_study('paper') == files['paper'].study\n"
         "assert load_study('paper') is not load_study('paper')\n"
@@ -102,7 +102,7 @@ def test_reading_a_study_file_imports_nothing_of_analysis_and_fills_no_registry(
     assert done.stdout.strip() == "[]"
 
 
-@pytest.mark.parametrize("module", ["runner.study_file", "runner.study", "runner.studies"])
+@pytest.mark.parametrize("module", ["runner.study.file", "runner.study", "runner.study.studies"])
 def test_each_study_module_imports_first_without_a_circle(module):
     """Imported first in a fresh interpreter: a circle would fail on a name
     of the half-made module."""

@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from analysis.dump import open_run, rebound_from_dump
+from analysis.impact.dump import open_run, rebound_from_dump
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
@@ -289,7 +289,7 @@ def test_one_and_two_ranks_agree(tmp_path, roughness, gamma, bound, options):
     default dt: 1e-14 at 45 and 80.4 degrees; with rRESPA, the contact on the
     inner level, also 1e-14). The rough contact is chaotic: a
     1e-9 R move of the disk's points spreads e by 1e-2 at 80.4 degrees
-    (docs/validation_table.md), so the bound there is that spread's 1e-2
+    (docs/benchmarks/validation_table.md), so the bound there is that spread's 1e-2
     (measured: 7e-10); at 45 degrees on the default wall the two runs part
     by 4e-4, within that scene's spread, and are not compared."""
     scene = build_scene(SceneSpec(gamma_deg=gamma, roughness=roughness))

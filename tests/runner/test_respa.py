@@ -19,7 +19,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from analysis.series import read_series
+from analysis.impact.series import read_series
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec

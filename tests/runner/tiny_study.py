@@ -1,5 +1,5 @@
 """The tests' tiny study: the command, its table, the columns compared
-(tests/runner/test_study.py, test_study_folder.py; conftest.py runs it once)."""
+(tests/runner/study/test_study.py, test_study_folder.py; conftest.py runs it once)."""
 
 from __future__ import annotations
 

@@ -1,0 +1,352 @@
+"""e, beta and the fits against the disk's resolution (studies/resolution.toml,
+docs/studies/resolution/resolution.md), for any reading (the rows' ``limit``) and any levels.
+
+The study runs the random and triangular disks from 200 to 12,800 points on
+walls of twice their points, under readings of how the model is carried to
+finer disks (analysis.kinds.readings.LIMITS). Fewer seeds where an impact costs
+more (``plan``). Per reading and resolution (``summaries``): the model-free
+measures and Walton's fits both ways (analysis.statistics.estimates.study_estimates on
+that resolution's impacts alone; errors by the seed count,
+analysis.statistics.seeds.seed_errors), the fitting choice's systematic error, and
+whether the level is left out of the fits (too many impacts over the drift
+limit or failed). Per quantity, its limit with the form's band or "not
+converged" (``limits``, analysis.statistics.extrapolation), and per reading the
+per-seed differences between resolutions and Giles's allocation of seeds
+(``multilevel``, analysis.statistics.levels). Its page: pages.resolution.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from builder.study_names import LIMITS
+
+from ..statistics import extrapolation, levels
+from ..statistics.estimates import study_estimates
+from ..statistics.measures import GRAZING_ANGLES
+from .readings import Setup
+
+COLUMNS = (
+    "reading",
+    "limit",
+    "n_disk",
+    "study_lattice",
+    "lattice",
+    "seed",
+    "gamma_deg",
+    "cot_gamma",
+    "vn",
+    "e",
+    "beta",
+    "omega",
+    "contact_time",
+    "vibration_disk",
+    "vibration_wall",
+    "side_clearance",
+    "energy_drift",
+    "drift_exceeded",
+    "n_wall_points",
+    "disk_inertia_ratio",
+    "nu",
+    "steps",
+    "dt",
+    "error",
+)
+# Seeds are full up to this many disk points; beyond, they fall as the
+# points grow (an impact's cost grows about as N^1.5), to at least MIN_SAMPLES.
+FULL_SAMPLES_UP_TO = 1600
+MIN_SAMPLES = 4
+# The per-point readings are followed as far as this (the paper's fixed
+# contact is refused beyond: its exponential is not resolved at the cutoff).
+PER_POINT_UP_TO = 3200
+# The triangular disk as far as this, the random one as far as the study goes.
+TRIANGULAR_UP_TO = 6400
+# Readings whose seeds are coupled across the resolutions (one surface per
+# seed: builder/profile.py): their seeds fall as N^-0.75 beyond
+# FULL_SAMPLES_UP_TO, the multilevel allocation sqrt(V / C) for a cost per
+# impact growing as N^1.5 and a variance of the differences that does not
+# grow; the smooth baseline at SMOOTH_SAMPLES seeds up to SMOOTH_UP_TO.
+COUPLED = ("profile", "smooth", "paper-slope")
+SMOOTH_SAMPLES = 4
+SMOOTH_UP_TO = 6400
+
+
+def label(choice: dict) -> str:
+    """A combination's reading: ``continuum_n800``."""
+    return f"{choice['limit']}_n{choice['n_disk']}"
+
+
+def row_fields(choice: dict, setup: Setup) -> dict:
+    return {"limit": choice["limit"], "n_disk": choice["n_disk"]}
+
+
+def samples_at(n_disk: int, samples: int) -> int:
+    """Seeds at ``n_disk`` points: ``samples`` up to FULL_SAMPLES_UP_TO, then
+    falling as 1 / N, never below MIN_SAMPLES."""
+    if n_disk <= FULL_SAMPLES_UP_TO:
+        return samples
+    return max(MIN_SAMPLES, round(samples * FULL_SAMPLES_UP_TO / n_disk))
+
+
+def coupled_samples_at(n_disk: int, samples: int) -> int:
+    """Seeds at ``n_disk`` points for a coupled reading (COUPLED)."""
+    if n_disk <= FULL_SAMPLES_UP_TO:
+        return samples
+    return max(MIN_SAMPLES, round(samples * (FULL_SAMPLES_UP_TO / n_disk) ** 0.75))
+
+
+def plan(choice: dict, study):
+    """The combination's study as run, or None to skip it: seeds by cost; the
+    per-point readings on the random disk up to PER_POINT_UP_TO; the
+    triangular disk up to TRIANGULAR_UP_TO."""
+    n_disk = choice["n_disk"]
+    lattices = tuple(study.lattices)
+    if choice["limit"] == "smooth":
+        if n_disk > SMOOTH_UP_TO:
+            return None
+        return replace(study, samples=min(study.samples, SMOOTH_SAMPLES))
+    if choice["limit"] in COUPLED:
+        return replace(study, samples=coupled_samples_at(n_disk, study.samples))
+    if choice["limit"] != "continuum":
+        if n_disk > PER_POINT_UP_TO:
+            return None
+        lattices = tuple(x for x in lattices if x == "random")
+    elif n_disk > TRIANGULAR_UP_TO:
+        lattices = tuple(x for x in lattices if x != "triangular")
+    if not lattices:
+        return None
+    return replace(study, lattices=lattices, samples=samples_at(n_disk, study.samples))
+
+
+RESAMPLES = 200
+# The quantities followed against N: (key, label); ``extract`` reads them.
+QUANTITIES = (
+    ("e_normal", "e near normal incidence (cot gamma >= 1)"),
+    ("e_grazing", "e at grazing incidence (3 smallest cot gamma)"),
+    ("mu", "Walton's mu (measured way)"),
+    ("beta0", "Walton's beta0 (measured way)"),
+    ("mu_eff_top", "mu_eff at the sliding branch's top"),
+)
+# The quantities whose steps between resolutions are paired by seed (``limits``).
+PAIRED = ("e_normal", "e_grazing")
+# Walton's fitted parameters, which carry the fitting choice's systematic error.
+FITTED = ("mu", "beta0", "mu_paper", "beta0_paper")
+# A level with more than this share of its impacts over the drift limit, or
+# failed, is left out of the fits (its numbers are shown, marked).
+DRIFT_SHARE = 0.1
+FAILED_SHARE = 0.1
+
+
+def finished(rows: list[dict]) -> list[dict]:
+    return [r for r in rows if not r.get("error") and r.get("e") not in (None, "")]
+
+
+def extract(fits: dict, lattice: str) -> dict[str, tuple[float, float]]:
+    """(value, statistical error) of each quantity from one level's
+    ``study_estimates``: QUANTITIES, the paper's-way fit (``mu_paper``,
+    ``beta0_paper``), ``beta_normal``, ``share_beta_positive`` and
+    ``share_near_side``."""
+    entry = fits["lattices"][lattice]
+    out = {
+        key: (value["value"], value["sd"])
+        for key, value in entry["measures"].items()
+        if key != "mu_eff" and value["value"] is not None
+    }
+    for way, suffix in (("measured", ""), ("paper", "_paper")):
+        walton = entry["walton"][way]
+        out[f"mu{suffix}"] = (walton["mu"], walton["mu_sd"])
+        out[f"beta0{suffix}"] = (walton["beta0"], walton["beta0_sd"])
+    return {k: (float(v), float(s) if s is not None else float("nan")) for k, (v, s) in out.items()}
+
+
+def grazing_peak(done: list[dict], mean_sd: dict, lattice: str) -> tuple[float, float]:
+    """The largest mean e of the GRAZING_ANGLES most grazing angles, with its
+    error (the letter's e > 1 grazing peak)."""
+    best = None
+    for gamma in sorted({float(r["gamma_deg"]) for r in done}, reverse=True)[:GRAZING_ANGLES]:
+        e = np.mean([float(r["e"]) for r in done if float(r["gamma_deg"]) == gamma])
+        if best is None or e > best[0]:
+            best = (float(e), float(mean_sd[(lattice, gamma)]["e_seed_sd"]))
+    return best
+
+
+def short_angles(done: list[dict], seeds: int) -> list[tuple[float, int]]:
+    """(gamma_deg, seeds) of the angles that rest on fewer than all the level's seeds."""
+    count: dict[float, set] = {}
+    for r in done:
+        count.setdefault(float(r["gamma_deg"]), set()).add(r["seed"])
+    return [(g, len(s)) for g, s in sorted(count.items()) if len(s) < seeds]
+
+
+def excluded(entry: dict) -> str | None:
+    """Why a level is left out of the fits (DRIFT_SHARE, FAILED_SHARE), or None."""
+    if entry["impacts"] and entry["drifted"] > DRIFT_SHARE * entry["impacts"]:
+        return f"{entry['drifted']} of {entry['impacts']} impacts over the drift limit"
+    if entry["impacts"] and entry["failed"] > FAILED_SHARE * entry["impacts"]:
+        return f"{entry['failed']} of {entry['impacts']} impacts failed"
+    return None
+
+
+def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
+    """(limit, lattice, n_disk) -> its quantities (value, statistical error),
+    Walton's fitting-choice systematic and chi2/dof, impacts, seeds, the
+    errors' method, failures, drift, the angles short of seeds and whether
+    the level is left out of the fits."""
+    out = {}
+    keys = sorted({(r["limit"], r["study_lattice"], int(r["n_disk"])) for r in rows})
+    for limit, lattice, n_disk in keys:
+        group = [
+            r
+            for r in rows
+            if r["limit"] == limit and r["study_lattice"] == lattice and int(r["n_disk"]) == n_disk
+        ]
+        done = finished(group)
+        seeds = len({r["seed"] for r in group})
+        entry = {
+            "impacts": len(group),
+            "failed": len(group) - len(done),
+            "seeds": seeds,
+            "dt": float(done[0]["dt"]) if done else float("nan"),
+            "drift": max((abs(float(r["energy_drift"])) for r in done), default=float("nan")),
+            "drifted": sum(r["drift_exceeded"] in ("True", "true", "1") for r in done),
+            "short_angles": short_angles(done, seeds),
+            "values": {},
+        }
+        entry["excluded"] = excluded(entry)
+        if done:
+            fits, mean_sd = study_estimates(
+                done, resamples=RESAMPLES, compliant=False, by_seed_count=True
+            )
+            entry["values"] = extract(fits, lattice)
+            entry["values"]["e_peak_grazing"] = grazing_peak(done, mean_sd, lattice)
+            walton = fits["lattices"][lattice]["walton"]
+            entry["systematic"] = walton["systematic"]
+            entry["chi2"] = {way: walton[way]["chi2"] for way in ("measured", "paper")}
+            entry["errors"] = fits["errors"]
+        out[(limit, lattice, n_disk)] = entry
+    return out
+
+
+def levels_of(summary: dict, limit: str, lattice: str, quantity: str, fitted_only: bool = True):
+    """[(N, value, error)] of one quantity, the excluded levels left out if ``fitted_only``."""
+    return [
+        (n, *entry["values"][quantity])
+        for (li, la, n), entry in sorted(summary.items())
+        if (li, la) == (limit, lattice)
+        and quantity in entry["values"]
+        and not (fitted_only and entry["excluded"])
+    ]
+
+
+def limits(
+    summary: dict, quantities=tuple(q for q, _ in QUANTITIES), rows: list[dict] | None = None
+) -> dict:
+    """(limit, lattice, quantity) -> ``analysis.statistics.extrapolation.limit`` of its
+    levels that are not excluded, each level's seeds setting the test of its
+    steps; with ``rows``, the steps of the quantities that have a value per
+    seed (PAIRED) are the per-seed differences paired by seed and angle
+    (``analysis.statistics.levels.coupled_differences``: right whether or not the seeds
+    are coupled across N, and tighter where they are)."""
+    pairs = sorted({(k[0], k[1]) for k in summary}, key=order)
+    out = {}
+    for limit, lattice in pairs:
+        seeds = {
+            n: s["seeds"] for (li, la, n), s in summary.items() if (li, la) == (limit, lattice)
+        }
+        mine = [r for r in rows or () if r["limit"] == limit and r["study_lattice"] == lattice]
+        for q in quantities:
+            steps = None
+            if mine and q in PAIRED:
+                found = levels.coupled_differences(mine, q)
+                steps = {d["n"]: (d["mean"], d["se"]) for d in found}
+            out[(limit, lattice, q)] = extrapolation.limit(
+                levels_of(summary, limit, lattice, q), steps, seeds
+            )
+    return out
+
+
+def order(key: tuple[str, str]) -> tuple[int, str, str]:
+    """(reading, lattice) in the order the readings are declared
+    (builder.study_names.LIMITS), then by name: never a set's order, which
+    changes with the interpreter's string hashing."""
+    limits = tuple(LIMITS)
+    return (limits.index(key[0]) if key[0] in limits else len(limits), key[0], key[1])
+
+
+def means_by_angle(rows: list[dict], limit: str, lattice: str) -> dict[int, list[tuple]]:
+    """N -> [(cot gamma, e mean, e se, beta mean, beta se)] over the seeds."""
+    out: dict[int, list[tuple]] = {}
+    mine = [r for r in finished(rows) if r["limit"] == limit and r["study_lattice"] == lattice]
+    for n in sorted({int(r["n_disk"]) for r in mine}):
+        at_n = [r for r in mine if int(r["n_disk"]) == n]
+        points = []
+        for gamma in sorted({float(r["gamma_deg"]) for r in at_n}):
+            here = [r for r in at_n if float(r["gamma_deg"]) == gamma]
+            e = np.array([float(r["e"]) for r in here])
+            beta = np.array([float(r["beta"]) for r in here])
+            cot = float(np.mean([float(r["cot_gamma"]) for r in here]))
+            se = lambda a: a.std(ddof=1) / np.sqrt(len(a)) if len(a) > 1 else np.nan  # noqa: E731
+            points.append((cot, e.mean(), se(e), beta.mean(), se(beta)))
+        out[n] = points
+    return out
+
+
+# The multilevel estimate's targets (issue 46): standard errors wanted.
+TARGETS = {"e_normal": 0.005, "mu": 0.01}
+
+
+def halving_chain(ns: list[int]) -> list[int]:
+    """The levels from extrapolation.FIT_FROM up that follow each other by halvings."""
+    chain = [n for n in ns if n == extrapolation.FIT_FROM]
+    while chain and 2 * chain[-1] in ns:
+        chain.append(2 * chain[-1])
+    return chain
+
+
+def multilevel(rows: list[dict], summary: dict, limit: str, lattice: str) -> dict:
+    """One reading and lattice's per-seed differences between resolutions
+    (``analysis.statistics.levels.coupled_differences`` of every group) and, per
+    quantity of TARGETS, Giles's seeds per level over the halvings from 800
+    points that are not left out: the level variances per seed (the
+    coarsest's from its error times its seeds; the differences' measured per
+    seed for e, and for Walton's mu, which has no per-seed value, the two
+    levels' per-seed variances summed, as for independent draws), the cost of
+    a seed in 800-point seeds, the allocation, and the finest level alone at
+    the same error."""
+    mine = [r for r in finished(rows) if r["limit"] == limit and r["study_lattice"] == lattice]
+    differences = {group: levels.coupled_differences(mine, group) for group in levels.GROUPS}
+    chain = halving_chain([n for n, *_ in levels_of(summary, limit, lattice, "e_normal")])
+    out = {"differences": differences, "plans": {}}
+    if len(chain) < 2:
+        return out
+    angles = len({r["gamma_deg"] for r in mine})
+    cost = {n: c * angles for n, c in levels.cost_per_impact(mine).items()}
+    unit = cost[chain[0]]
+
+    def per_seed(q: str, n: int) -> float:
+        entry = summary[(limit, lattice, n)]
+        return levels.variance_per_seed(entry["values"][q][1], entry["seeds"])
+
+    for q, target in TARGETS.items():
+        variances, costs = [per_seed(q, chain[0])], [cost[chain[0]] / unit]
+        measured = {d["n"]: d["sd_difference"] ** 2 for d in differences["e_normal"]}
+        for n in chain[1:]:
+            if q == "e_normal" and n in measured:
+                variances.append(measured[n])
+            else:
+                variances.append(per_seed(q, n) + per_seed(q, n // 2))
+            costs.append((cost[n] + cost[n // 2]) / unit)
+        plan = levels.allocation(variances, costs, target)
+        alone = max(np.ceil(per_seed(q, chain[-1]) / target**2), levels.MIN_SEEDS)
+        out["plans"][q] = {
+            "target": target,
+            "levels": chain,
+            "variances": variances,
+            "costs": costs,
+            **plan,
+            "finest_alone_seeds": int(alone),
+            "finest_alone_cost": float(alone * cost[chain[-1]] / unit),
+        }
+    return out

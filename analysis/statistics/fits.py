@@ -1,0 +1,215 @@
+"""Fits of the theories to the per-angle means of beta(psi) (MODEL.md section 6).
+
+A fit takes the means per angle (``Means``) and either weights each angle by
+the standard error of its mean of beta (``weighted=True``) or weights every
+angle alike (least squares on the means, the paper's way). e is either the
+measured mean at each angle or a fixed number (the paper's 0.8). The errors
+of the fitted parameters come from the seed bootstrap (``analysis.statistics.seeds``),
+not from here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares, minimize_scalar
+
+from ..theory.tangential import Compliant, compliant_beta, walton_beta
+from .seeds import SeedTable
+
+
+@dataclass
+class Means:
+    """Per-angle means of psi, e and beta, with the standard errors of beta."""
+
+    psi: np.ndarray
+    e: np.ndarray
+    beta: np.ndarray
+    beta_se: np.ndarray
+
+    def select(self, keep: np.ndarray) -> Means:
+        """The angles where ``keep`` is True."""
+        return Means(self.psi[keep], self.e[keep], self.beta[keep], self.beta_se[keep])
+
+
+def means(table: SeedTable) -> Means:
+    """The per-angle means of a lattice's impacts, at the angles with at least
+    two impacts.
+
+    Parameters
+    ----------
+    table : SeedTable
+        One lattice's impacts by seed and angle.
+
+    Returns
+    -------
+    Means
+        psi, e and beta averaged per angle and the standard error of the mean
+        of beta (sd / sqrt(n)); only an angle whose samples agree exactly (a
+        standard error of exactly 0) gets the median standard error instead,
+        not infinite weight.
+    """
+    keep = table.counts() > 1
+    se = table.standard_error("beta")[keep]
+    return Means(
+        table.mean("cot_gamma")[keep],
+        table.mean("e")[keep],
+        table.mean("beta")[keep],
+        weights_floor(se),
+    )
+
+
+def weights_floor(se: np.ndarray) -> np.ndarray:
+    """Standard errors with only the exactly zero (or undefined) ones replaced
+    by the median of the others (1 if there are none): an angle whose samples
+    agree exactly would get infinite weight. Every other standard error, however
+    small, is kept, so the fit weights each angle as documented.
+
+    Parameters
+    ----------
+    se : numpy.ndarray
+        Standard errors of the per-angle means.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same, with the zeros replaced.
+    """
+    se = np.asarray(se, float)
+    usable = np.isfinite(se) & (se > 0)
+    floor = np.median(se[usable]) if usable.any() else 1.0
+    return np.where(usable, se, floor)
+
+
+def _scale(data: Means, weighted: bool) -> np.ndarray:
+    return data.beta_se if weighted else np.ones_like(data.beta)
+
+
+def _e(data: Means, e: float | None) -> np.ndarray:
+    return data.e if e is None else np.full_like(data.psi, e)
+
+
+# Both models are piecewise in psi (a kink where sliding gives way to
+# sticking), so the cost has local minima in mu: the local fit starts from the
+# best of a coarse grid of mu.
+MU_GRID = np.geomspace(1e-3, 3.0, 25)
+
+
+def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = True) -> np.ndarray:
+    """(mu, beta0) of Walton's model by least squares on the per-angle means.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means (``means``).
+    K : float
+        1 + M R^2 / I of the disk (the paper's way: 3).
+    e : float, optional
+        A fixed e (the paper's way: 0.8); default the measured mean e at each angle.
+    weighted : bool
+        Residuals over the standard errors of the means (True), or all alike.
+
+    Returns
+    -------
+    numpy.ndarray
+        (mu, beta0).
+    """
+    e_values, scale = _e(data, e), _scale(data, weighted)
+
+    def residuals(p):
+        return (walton_beta(data.psi, e_values, p[0], p[1], K) - data.beta) / scale
+
+    # beta of single impacts can pass 1 (near-normal, tiny tangential velocity)
+    beta0 = float(np.clip(np.max(data.beta), -1.4, 1.4))
+    mu = min(MU_GRID, key=lambda m: np.sum(residuals([m, beta0]) ** 2))
+    return least_squares(residuals, [mu, beta0], bounds=([0.0, -1.5], [5.0, 1.5])).x
+
+
+def compliant_curve(data: Means, mu: float, nu: float, alpha: float, e=None) -> np.ndarray:
+    """The compliant model's beta at the angles of ``data``."""
+    return np.array(
+        [
+            compliant_beta(p, Compliant(e=ei, mu=mu, nu=nu, alpha=alpha))
+            for p, ei in zip(data.psi, _e(data, e))
+        ]
+    )
+
+
+def fit_compliant(
+    data: Means,
+    nu: float,
+    alpha: float,
+    e: float | None = None,
+    weighted: bool = True,
+    start: float | None = None,
+) -> np.ndarray:
+    """mu of the compliant model by least squares on the per-angle means.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means (``means``).
+    nu : float
+        Poisson ratio (the paper's eta = 1.015 is ``theory.nu_for_eta(1.015)``).
+    alpha : float
+        K = 1 + M R^2 / I (the paper's: 3.02).
+    e : float, optional
+        A fixed e (the paper's way: 0.8); default the measured mean e at each angle.
+    weighted : bool
+        Residuals over the standard errors of the means (True), or all alike.
+    start : float, optional
+        A mu near the answer (a bootstrap resample's fit starts from the
+        fit to all the data): the search then brackets it instead of
+        scanning ``MU_GRID``, and falls back to the scan if the answer is at
+        the bracket's edge.
+
+    Returns
+    -------
+    numpy.ndarray
+        (mu,), one element.
+    """
+    scale = _scale(data, weighted)
+
+    def cost(mu):
+        return float(np.sum(((compliant_curve(data, mu, nu, alpha, e) - data.beta) / scale) ** 2))
+
+    if start is not None:
+        low, high = start / 1.25, start * 1.25
+        found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
+        if low * 1.001 < found.x < high / 1.001:
+            return np.array([found.x])
+    costs = [cost(m) for m in MU_GRID]
+    k = int(np.argmin(costs))
+    low, high = MU_GRID[max(k - 1, 0)], MU_GRID[min(k + 1, len(MU_GRID) - 1)]
+    found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
+    return np.array([found.x])
+
+
+def reduced_chi2(
+    data: Means, model_beta: np.ndarray, parameters: int, sd: np.ndarray | None = None
+) -> float:
+    """Squared residuals over the errors of the means, per degree of freedom:
+    about 1 if the model describes the means within their errors.
+
+    Parameters
+    ----------
+    data : Means
+        Per-angle means.
+    model_beta : numpy.ndarray
+        The model's beta at each angle.
+    parameters : int
+        Number of fitted parameters.
+    sd : numpy.ndarray, optional
+        The errors of the means of beta (the seed bootstrap's); default
+        ``data.beta_se``. The angles are treated as independent, which they
+        are not quite (one seed serves all): a gauge, not a test.
+
+    Returns
+    -------
+    float
+        chi2 / (angles - parameters), the divisor at least 1.
+    """
+    sd = data.beta_se if sd is None else np.asarray(sd)
+    residuals = (np.asarray(model_beta) - data.beta) / sd
+    return float(np.sum(residuals**2) / max(len(residuals) - parameters, 1))

@@ -1,0 +1,120 @@
+"""Model-free measures of a lattice's rebound (MODEL.md section 6).
+
+They describe the data where the theories do not, each from the per-angle
+means (every angle counts alike), and get their errors from the seed
+bootstrap like every other number:
+
+- ``e_normal``: e near normal incidence, the mean over the angles with
+  cot gamma >= 1;
+- ``e_grazing``: the mean e over the three smallest cot gamma;
+- ``beta_normal``: beta near normal incidence, the mean over cot gamma >= 4;
+- ``mu_eff``: the implied Coulomb friction (1 + beta) / ((1 + e) K psi) at
+  every angle, which Walton's sliding branch holds constant at mu;
+- ``mu_eff_top``: mu_eff at the top of the sliding branch (``sliding_branch``);
+- ``share_beta_positive``: the share of the angles whose mean beta is above 0;
+- ``share_near_side``: the share of all the lattice's contacts whose disk
+  centre came within ``table.NEAR_SIDE`` of a fixed side of the wall.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..table import NEAR_SIDE
+from .seeds import SeedTable
+
+E_NORMAL_PSI = 1.0  # e near normal incidence: cot gamma >= 1
+BETA_NORMAL_PSI = 4.0  # beta near normal incidence: cot gamma >= 4
+GRAZING_ANGLES = 3  # e at grazing incidence: the three smallest cot gamma
+
+
+def mu_eff(psi, e, beta, K: float) -> np.ndarray:
+    """The Coulomb friction that Walton's sliding branch would need for this beta.
+
+    Parameters
+    ----------
+    psi, e, beta : array_like
+        cot gamma and the means of e and beta at each angle.
+    K : float
+        1 + M R^2 / I of the disk.
+
+    Returns
+    -------
+    numpy.ndarray
+        (1 + beta) / ((1 + e) K psi).
+    """
+    return (1.0 + np.asarray(beta)) / ((1.0 + np.asarray(e)) * K * np.asarray(psi))
+
+
+def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> np.ndarray:
+    """The angles of the sliding branch: cot gamma below the kink of a Walton fit.
+
+    Walton's beta leaves the sliding line -1 + mu (1 + e) K psi for the
+    plateau beta0 at psi_c = (1 + beta0) / (mu (1 + e) K); with the paper's
+    fit (e 0.8, K 3) that is where the paper read its mu from. The data
+    have no sharp kink (mu_eff is not constant), so the branch is this fit's
+    reading of where sliding ends, fixed from all the data before any
+    resample.
+
+    Parameters
+    ----------
+    psi : array_like
+        cot gamma of each angle.
+    mu, beta0, e, K : float
+        The Walton fit that places the kink.
+
+    Returns
+    -------
+    numpy.ndarray
+        True at the angles with psi < psi_c.
+    """
+    psi_c = (1.0 + beta0) / (mu * (1.0 + e) * K) if mu > 0 else np.inf
+    return np.asarray(psi) < psi_c
+
+
+def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.ndarray]:
+    """The model-free measures of one lattice (module docstring).
+
+    Parameters
+    ----------
+    table : SeedTable
+        The lattice's impacts by seed and angle.
+    K : float
+        1 + M R^2 / I of the disk.
+    branch : numpy.ndarray
+        The sliding branch's angles (``sliding_branch``), one bool per angle of
+        ``table``.
+
+    Returns
+    -------
+    dict
+        ``e_normal``, ``e_grazing``, ``beta_normal``, ``mu_eff_top``,
+        ``share_beta_positive``, ``share_near_side`` (floats, NaN where no
+        angle qualifies) and ``mu_eff`` (one per angle of ``table``).
+    """
+    psi, e, beta = table.mean("cot_gamma"), table.mean("e"), table.mean("beta")
+    with np.errstate(invalid="ignore"):
+        order = np.argsort(psi)
+        grazing = order[:GRAZING_ANGLES]
+        mu = mu_eff(psi, e, beta, K)
+        top = np.flatnonzero(branch)
+        top = top[np.argmax(psi[top])] if top.size else None
+        clearance = table.values["side_clearance"]
+        reached = np.isfinite(clearance)
+        return {
+            "e_normal": _mean(e[psi >= E_NORMAL_PSI]),
+            "e_grazing": _mean(e[grazing]),
+            "beta_normal": _mean(beta[psi >= BETA_NORMAL_PSI]),
+            "mu_eff": mu,
+            "mu_eff_top": float(mu[top]) if top is not None else np.nan,
+            "share_beta_positive": _mean((beta > 0)[np.isfinite(beta)]),
+            "share_near_side": float(np.sum(clearance[reached] < NEAR_SIDE) / reached.sum())
+            if reached.any()
+            else np.nan,
+        }
+
+
+def _mean(values: np.ndarray) -> float:
+    values = np.asarray(values, float)
+    values = values[np.isfinite(values)]
+    return float(values.mean()) if values.size else np.nan

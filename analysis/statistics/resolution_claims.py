@@ -1,0 +1,184 @@
+"""The paper's claims judged at each resolution and in the limit
+(docs/studies/resolution/resolution.md; the rules are analysis.statistics.claims's).
+
+Per reading, each claim of docs/studies/results/results.md's table that the resolution study
+measures, and the letter's e > 1 peak at grazing incidence, gets a verdict at
+every level and in the limit N -> infinity:
+
+- at a level, the number's statistical error (widened to the t interval's
+  width where fewer than 16 seeds enter: the jackknife's n - 1 degrees of
+  freedom) combined in quadrature, for a Walton fit that fails (chi2/dof above
+  analysis.statistics.estimates.CHI2_LIMIT), with the fitting choice's systematic error;
+- in the limit, the extrapolation's statistical error and the band between
+  its forms (analysis.statistics.extrapolation) in quadrature, and for a Walton fit
+  that fails at the finest level in the fits, that level's fitting-choice
+  systematic error; a quantity not converged,
+  with too few levels or no form that describes it is "undecided", never
+  judged;
+- a level left out of the fits (analysis.kinds.resolution.excluded) is not judged;
+- "x > 1" (the grazing peak) meets if the interval x +- 2 errors lies above
+  1, misses if below, and is undecided otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+
+from scipy import stats
+
+from .claims import NEAR, SAME, verdict
+from .estimates import CHI2_LIMIT
+from .seeds import error_method, interval_factor
+
+# (claim, lattice, quantity, paper's value, near (None: "above"), Walton fit way or None)
+CLAIMS = (
+    ("e near 0.8 (mean e at cot gamma >= 1)", "random", "e_normal", 0.8, NEAR["e"], None),
+    ("Walton's mu near 0.18 (the paper's way)", "random", "mu_paper", 0.18, NEAR["mu"], "paper"),
+    (
+        "mu near 0.18 (mu_eff at the sliding branch's top)",
+        "random",
+        "mu_eff_top",
+        0.18,
+        NEAR["mu"],
+        None,
+    ),
+    (
+        "Walton's beta0 near 0.56 (the paper's way)",
+        "random",
+        "beta0_paper",
+        0.56,
+        NEAR["beta0"],
+        "paper",
+    ),
+    (
+        "beta0 near 0.56 (mean beta at cot gamma >= 4)",
+        "random",
+        "beta_normal",
+        0.56,
+        NEAR["beta0"],
+        None,
+    ),
+    (
+        "triangular: beta < 0 at every angle (share of angles with mean beta > 0: 0)",
+        "triangular",
+        "share_beta_positive",
+        0.0,
+        NEAR["share_beta_positive"],
+        None,
+    ),
+    (
+        "no contact near the wall's ends (share within 1 R: 0)",
+        "random",
+        "share_near_side",
+        0.0,
+        NEAR["near_side"],
+        None,
+    ),
+    ("the letter's e > 1 at grazing incidence (largest mean e)", "random", "e_peak_grazing", 1.0),
+)
+NORMAL_95 = float(stats.norm.ppf(0.975))
+
+
+def above(value: float, error: float, bound: float) -> str:
+    """The verdict on "x > bound" (module docstring)."""
+    if not math.isfinite(value):
+        return "-"
+    if value - SAME * error > bound:
+        return "meets"
+    return "misses" if value + SAME * error < bound else "undecided"
+
+
+def level_error(entry: dict, quantity: str, way: str | None) -> tuple[float, float] | None:
+    """(value, error) of a quantity at one level (module docstring), or None."""
+    if quantity not in entry["values"]:
+        return None
+    value, sd = entry["values"][quantity]
+    seeds = entry["seeds"]
+    if error_method(seeds) == "jackknife" and seeds > 1:
+        sd *= interval_factor(seeds) / NORMAL_95
+    systematic = 0.0
+    if way and entry["chi2"][way] > CHI2_LIMIT:
+        systematic = entry["systematic"][quantity.removesuffix("_paper")]
+    return value, math.hypot(sd, systematic)
+
+
+def judge(value: float, error: float, claim: tuple) -> str:
+    _, _, _, paper, *rest = claim
+    if not rest:
+        return above(value, error, paper)
+    return verdict(value, error, paper, rest[0])
+
+
+def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> dict:
+    """The claim in the limit from ``analysis.statistics.extrapolation.limit``'s answer,
+    with ``systematic`` (a fit's fitting-choice error) added in quadrature."""
+    if not found or found["status"] != "limit":
+        status = found["status"] if found else "too few"
+        why = {"too few": "too few levels", "no form": "no form describes the levels"}.get(status)
+        if status == "not converged":
+            why = f"not converged at {found['halvings']['finest']:,}"
+        return {"value": None, "error": None, "verdict": f"undecided ({why})"}
+    error = math.hypot(found["stat"], found["systematic"], systematic)
+    return {
+        "value": found["value"],
+        "error": error,
+        "verdict": judge(found["value"], error, claim),
+    }
+
+
+def finest_systematic(
+    summary: dict, found: dict | None, reading: str, lattice: str, quantity: str, way: str | None
+) -> float:
+    """The fitting-choice systematic error of the finest level in the fits,
+    where that level's fit fails; 0 otherwise."""
+    if not way or not found or not found.get("levels"):
+        return 0.0
+    entry = summary[(reading, lattice, max(found["levels"]))]
+    if entry["chi2"][way] <= CHI2_LIMIT:
+        return 0.0
+    return entry["systematic"][quantity.removesuffix("_paper")]
+
+
+def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
+    """Per claim of one reading: ``claim``, ``cells`` (N -> value, error,
+    verdict; None where the lattice has no such level) and ``limit``.
+
+    Parameters
+    ----------
+    summary : dict
+        ``analysis.kinds.resolution.summaries``.
+    limits : dict
+        (reading, lattice, quantity) -> ``analysis.statistics.extrapolation.limit``.
+    """
+    ns = sorted({n for (li, _, n) in summary if li == reading})
+    out = []
+    for claim in CLAIMS:
+        text, lattice, quantity, *_ = claim
+        way = claim[5] if len(claim) > 5 else None
+        if not any(li == reading and la == lattice for (li, la, _) in summary):
+            continue
+        cells = {}
+        for n in ns:
+            entry = summary.get((reading, lattice, n))
+            found = level_error(entry, quantity, way) if entry else None
+            cells[n] = (
+                {
+                    "value": found[0],
+                    "error": found[1],
+                    "verdict": "not judged" if entry["excluded"] else judge(*found, claim),
+                    "excluded": entry["excluded"],
+                }
+                if found
+                else None
+            )
+        found = limits.get((reading, lattice, quantity))
+        out.append(
+            {
+                "claim": text,
+                "cells": cells,
+                "limit": limit_verdict(
+                    found, claim, finest_systematic(summary, found, reading, lattice, quantity, way)
+                ),
+            }
+        )
+    return out

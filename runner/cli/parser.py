@@ -1,0 +1,163 @@
+"""Command line: python -m runner {impact,run,study,page,tilt} --help
+
+One parser with a subcommand each; what a study command does is runner/cli/study.py's,
+where its tables and page go runner/study/outputs.py's.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from builder.cli import (
+    OneLineParser,
+    add_scene_arguments,
+    spec_from_args,
+    validate_spec,
+)
+from builder.scene import (
+    speed_warning,
+)
+from ground.checks import InPath, OutFolder, require_out_folder
+from ground.errors import BuildError, InputError, os_error_line
+from ground.gate import environment_paths, gate
+from ground.launch import LammpsError, mpi_launcher, require_lmp
+
+from ..stopping import Stopped, stop_on_signals
+from ..study import runs_folder
+from ..study.file import StudyFile
+from ..study.outputs import remake_page, shown
+from ..wall_tilt import add_tilt_arguments, wall_tilt
+from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
+from .study import add_study_arguments, run_study_command, study_argument
+from .study_args import EnvironmentFault
+
+
+def parser() -> OneLineParser:
+    """python -m runner's options."""
+    parser = OneLineParser(prog="python -m runner", description="Run oblique impacts with LAMMPS.")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    impact = commands.add_parser("impact", help="build a scene, run one impact, print its result")
+    add_scene_arguments(impact)
+    add_run_arguments(impact)
+    impact.add_argument(
+        "--out",
+        type=OutFolder(),
+        default=None,
+        help="run folder (default: runs/<lattice>_s<seed>_g<gamma>)",
+    )
+
+    run = commands.add_parser("run", help="run an existing scene folder (python -m builder scene)")
+    run.add_argument(
+        "scene",
+        type=InPath("folder", ("scene.data", "scene.lmp", "scene.json")),
+        help="folder with scene.data, scene.lmp and scene.json",
+    )
+    add_run_arguments(run)
+
+    study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
+    add_study_arguments(study)
+
+    tilt = commands.add_parser(
+        "tilt", help="the wall's tilt under the disk, from dumps of a grazing study's impacts"
+    )
+    add_tilt_arguments(tilt)
+
+    page = commands.add_parser(
+        "page", help="a study's page in docs/ again from its committed tables, without its runs"
+    )
+    page.add_argument(
+        "preset",
+        metavar="STUDY",
+        nargs="?",
+        type=study_argument,
+        help="a study file with a page (its tables in docs/studies/<page>/)",
+    )
+    page.add_argument(
+        "--all",
+        action="store_true",
+        help="every study of studies/ whose tables are committed in docs/: each page, its "
+        "tables and figures made again from those tables alone (no run), and the tables "
+        "of the readings it tabulates in this version's format",
+    )
+    page.add_argument(
+        "--out",
+        type=OutFolder(lammps=False),
+        default=None,
+        help="write the page and its figures into this folder instead of docs/ "
+        "(a results page's tables too)",
+    )
+    return parser
+
+
+def check_launch(options) -> None:
+    """Refuse, before anything is built, a run that cannot start: more ranks
+    than this machine's cores (mpirun would refuse them after, in a message
+    of dashes) unless MPI is told to oversubscribe or IMPACT_MPIRUN launches
+    elsewhere; no mpirun or IMPACT_MPIRUN's program; no lmp."""
+    nprocs = options.nprocs
+    if options.route == "lmp" or nprocs > 1:
+        mpi_launcher(nprocs)
+        require_lmp()
+    cores = os.cpu_count() or 1
+    told = os.environ.get("OMPI_MCA_rmaps_base_oversubscribe") or os.environ.get("IMPACT_MPIRUN")
+    if nprocs > cores and not told:
+        raise InputError(
+            f"--np must be at most this machine's {cores} cores, got {nprocs} "
+            "(OMPI_MCA_rmaps_base_oversubscribe=1 runs more ranks than cores, slowly)"
+        )
+
+
+def main(argv: list[str] | None = None) -> int:
+    from analysis.text_table import format_table
+
+    from ..impact import run_impact, run_scene
+
+    args = parser().parse_args(argv)
+    if isinstance(getattr(args, "preset", None), StudyFile):  # the file, and its study's name
+        args.described, args.preset = args.preset, args.preset.study.name
+    try:
+        environment_paths()  # IMPACT_RUNS, IMPACT_POISSON_CACHE: through the one gate
+        if args.command == "impact":
+            spec = spec_from_args(args)
+            out = args.out or runs_folder() / f"{spec.lattice}_s{spec.seed}_g{spec.gamma_deg:g}"
+            require_out_folder("--out", out)
+            validate_spec(spec)
+            options = options_from_args(args)
+            if problem := options.scene_problem(spec):  # before anything is built
+                raise InputError(problem)
+            check_launch(options)
+            if warning := speed_warning(spec.vn, spec.gamma_deg):
+                print(f"python -m runner: warning: {warning}", file=sys.stderr)
+            results = [run_impact(spec, out, options)]
+        elif args.command == "run":
+            gate(args.scene, "scene")  # it writes its results into the folder
+            options = options_from_args(args)
+            check_launch(options)
+            results = [run_scene(args.scene, options)]
+        elif args.command == "page":
+            return remake_page(args)
+        elif args.command == "tilt":
+            print(f"wrote {shown(wall_tilt(args))}")
+            return 0
+        else:
+            with stop_on_signals():
+                return run_study_command(args)
+    except (InputError, BuildError, LammpsError, EnvironmentFault) as error:
+        print(f"python -m runner: error: {error}{unstable_hint(error, args)}", file=sys.stderr)
+        return 2 if isinstance(error, InputError) else 1
+    except Stopped as stop:
+        print(
+            f"python -m runner: stopped by {stop}, workers ended; the same command resumes "
+            f"the study",
+            file=sys.stderr,
+        )
+        return 128 + stop.signum
+    except OSError as error:  # a full disk, a read-only folder, a dangling link
+        print(f"python -m runner: error: {os_error_line(error)}", file=sys.stderr)
+        return 1
+    for result in results:
+        warn_if_inaccurate(result)
+    print(format_table(results))
+    return 0

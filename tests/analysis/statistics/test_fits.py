@@ -1,0 +1,130 @@
+"""Both fits of both theories (analysis/statistics/fits.py,
+analysis/statistics/estimates.py) recover the parameters of synthetic data
+made by the model they fit, and describe it (reduced chi^2 about 1); the fit
+of the wrong way does not."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analysis.statistics.estimates import CHI2_LIMIT, PAPER, study_estimates
+from analysis.statistics.fits import Means, fit_compliant, fit_walton, means, weights_floor
+from analysis.statistics.seeds import seed_tables
+from analysis.theory.tangential import Compliant, compliant_beta, nu_for_eta, walton_beta
+from tests.synthetic import impact_rows
+
+INERTIA = 0.52  # K = 1 + 1 / 0.52 = 2.92: not the paper's 3
+
+
+def e_of(psi):
+    """e falling toward grazing incidence, as measured (not the paper's 0.8)."""
+    return 0.92 - 0.25 / (1.0 + 4.0 * psi)
+
+
+def estimates(rows, resamples=40, compliant=True):
+    fits, _ = study_estimates(rows, resamples, compliant)
+    return fits["lattices"]["random"]
+
+
+def recovered(fit: dict, name: str, truth: float) -> None:
+    """Within 3 seed errors of the truth, and the errors small."""
+    assert abs(fit[name] - truth) < 3 * fit[f"{name}_sd"] + 1e-4
+    assert fit[f"{name}_sd"] < 0.02
+
+
+def test_walton_the_paper_s_way():
+    rows = impact_rows(
+        "random", lambda psi: walton_beta(psi, PAPER["e"], 0.18, 0.56, PAPER["K"]), seeds=60
+    )
+    fit = estimates(rows, compliant=False)["walton"]
+    recovered(fit["paper"], "mu", 0.18)
+    recovered(fit["paper"], "beta0", 0.56)
+    assert fit["paper"]["chi2"] < CHI2_LIMIT
+    assert (fit["paper"]["e"], fit["paper"]["K"], fit["paper"]["weights"]) == (0.8, 3.0, "none")
+
+
+def test_walton_the_measured_way():
+    K = 1 + 1 / INERTIA
+    rows = impact_rows(
+        "random",
+        lambda psi: walton_beta(psi, e_of(psi), 0.3, 0.35, K),
+        e_of,
+        seeds=60,
+        inertia_ratio=INERTIA,
+    )
+    fit = estimates(rows, compliant=False)["walton"]
+    recovered(fit["measured"], "mu", 0.3)
+    recovered(fit["measured"], "beta0", 0.35)
+    assert fit["measured"]["K"] == pytest.approx(K)
+    assert fit["measured"]["chi2"] < CHI2_LIMIT
+    assert fit["paper"]["chi2"] > CHI2_LIMIT  # e 0.8 and K 3 do not describe it
+
+
+def test_compliant_the_paper_s_way():
+    truth = Compliant(e=PAPER["e"], mu=0.3, nu=nu_for_eta(PAPER["eta"]), alpha=PAPER["alpha"])
+    rows = impact_rows("random", lambda psi: compliant_beta(psi, truth), seeds=40)
+    fit = estimates(rows, resamples=20)["compliant"]
+    recovered(fit["paper"], "mu", 0.3)
+    assert fit["paper"]["chi2"] < CHI2_LIMIT
+    assert fit["paper"]["nu"] == pytest.approx(nu_for_eta(1.015))
+
+
+def test_compliant_the_measured_way():
+    K = 1 + 1 / INERTIA
+
+    def beta_of(psi):
+        return compliant_beta(psi, Compliant(e=e_of(psi), mu=0.25, nu=0.29, alpha=K))
+
+    rows = impact_rows("random", beta_of, e_of, seeds=40, inertia_ratio=INERTIA, nu=0.29)
+    fit = estimates(rows, resamples=20)["compliant"]
+    recovered(fit["measured"], "mu", 0.25)
+    assert fit["measured"]["chi2"] < CHI2_LIMIT
+    assert fit["paper"]["chi2"] > CHI2_LIMIT
+
+
+def test_a_resample_s_fit_from_a_start_finds_the_scan_s_answer():
+    """fit_compliant from a nearby start (as the bootstrap's resamples do) and
+    from the full scan of mu agree."""
+    truth = Compliant(e=0.8, mu=0.22, nu=0.29, alpha=2.9)
+    rows = impact_rows("random", lambda psi: compliant_beta(psi, truth), seeds=20, noise_sd=0.05)
+    data = means(seed_tables(rows)["random"])
+    scanned = fit_compliant(data, 0.29, 2.9, 0.8, weighted=True)
+    for start in (0.2, 0.25):
+        started = fit_compliant(data, 0.29, 2.9, 0.8, weighted=True, start=start)
+        assert started == pytest.approx(scanned, abs=1e-5)
+
+
+def test_unweighted_and_weighted_fits_agree_on_exact_data():
+    rows = impact_rows(
+        "random", lambda psi: walton_beta(psi, 0.8, 0.2, 0.5, 3.0), seeds=5, noise_sd=1e-9
+    )
+    data = means(seed_tables(rows)["random"])
+    for weighted in (False, True):
+        assert fit_walton(data, 3.0, 0.8, weighted) == pytest.approx([0.2, 0.5], abs=1e-6)
+    assert np.all(data.beta_se > 0)
+
+
+def test_only_an_exactly_zero_standard_error_is_replaced():
+    """A tiny standard error keeps its weight (docs: se-weighted fits); only a
+    zero one, which would weigh infinitely, becomes the median of the others."""
+    se = np.array([0.08, 0.05, 0.002, 0.0, np.nan])
+    assert weights_floor(se).tolist() == [0.08, 0.05, 0.002, 0.05, 0.05]
+    rows = impact_rows("random", lambda psi: walton_beta(psi, 0.8, 0.2, 0.5, 3.0), seeds=8)
+    table = seed_tables(rows)["random"]
+    expected = table.standard_error("beta")[table.counts() > 1]
+    assert np.all(expected > 0)
+    assert means(table).beta_se == pytest.approx(expected, rel=0, abs=0)
+
+
+def test_the_grazing_angles_carry_their_weight():
+    """Three angles with standard errors 100 times below the others pull the
+    weighted fit to their own mu (the old floor at a tenth of the median did not)."""
+    psi = np.array([0.03, 0.05, 0.09, 0.3, 0.6, 1.0, 2.0, 4.0])
+    K = 3.0
+    beta = walton_beta(psi, 0.8, 0.2, 0.3, K)
+    beta[:3] = walton_beta(psi[:3], 0.8, 0.3, 0.3, K)  # a grip of its own at grazing
+    se = np.where(psi < 0.1, 1e-4, 1e-2)
+    data = Means(psi, np.full_like(psi, 0.8), beta, weights_floor(se))
+    mu, _ = fit_walton(data, K, 0.8, weighted=True)
+    assert mu == pytest.approx(0.3, abs=0.01)
