@@ -33,7 +33,6 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "math_const.h"
 #include "memory.h"
 #include "neighbor.h"
 #include "update.h"
@@ -41,6 +40,13 @@
 #include <cmath>
 
 using namespace LAMMPS_NS;
+
+// LAMMPS from 2022 on (platform.h appeared then) names the caller in minimum_image()
+#if __has_include("platform.h")
+#define MINIMUM_IMAGE(dx, dy, dz) domain->minimum_image(FLERR, dx, dy, dz)
+#else
+#define MINIMUM_IMAGE(dx, dy, dz) domain->minimum_image(dx, dy, dz)
+#endif
 
 /* ---------------------------------------------------------------------- */
 
@@ -204,7 +210,7 @@ void AngleAreaBarrier::coeff(int narg, char **arg)
 
 double AngleAreaBarrier::equilibrium_angle(int /*i*/)
 {
-  return MathConst::MY_PI / 3.0;
+  return acos(-1.0) / 3.0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -254,11 +260,11 @@ double AngleAreaBarrier::single(int type, int i1, int i2, int i3)
   double delx1 = x[i1][0] - x[i2][0];
   double dely1 = x[i1][1] - x[i2][1];
   double delz1 = 0.0;
-  domain->minimum_image(delx1, dely1, delz1);
+  MINIMUM_IMAGE(delx1, dely1, delz1);
   double delx2 = x[i3][0] - x[i2][0];
   double dely2 = x[i3][1] - x[i2][1];
   double delz2 = 0.0;
-  domain->minimum_image(delx2, dely2, delz2);
+  MINIMUM_IMAGE(delx2, dely2, delz2);
 
   const double j = 0.5 * (delx2 * dely1 - dely2 * delx1) / a0[type];
   if (j >= jc[type]) return 0.0;

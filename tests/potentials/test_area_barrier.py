@@ -165,36 +165,43 @@ def test_a_triangle_driven_into_the_barrier_conserves_energy_and_momenta():
     assert drift < 1e-6 * ke
 
 
+def barrier_scene(folder):
+    """A scene with the barrier at J_c 0.9, so that barrier_state's displaced
+    state puts hundreds of triangles inside it."""
+    return write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_wall=800, area_floor=0.9)), folder)
+
+
+def barrier_state(tmp_path, scene, nprocs=1, newton="on", command=None, env=None, extra=()):
+    """tests/decks/barrier_forces.lmp: (angle energy, virial xx yy xy, the
+    fix's most inside and smallest J), per atom (fx fy fz pe) by ID."""
+    out = tmp_path / f"forces_{nprocs}_{newton}_{len(list(tmp_path.iterdir()))}.dump"
+    args = ["-in", str(DECK), "-log", f"{out}.log", "-screen", "none", "-nocite"]
+    args += ["-var", "scene", str(scene), "-var", "out", str(out)]
+    args += ["-var", "newton", newton, "-var", "amp", "0.015", *extra]
+    proc = subprocess.run(
+        mpi_launcher(nprocs) + (command or ["lmp"]) + args,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        env={**mpi_environment(), **(env or {})},
+    )
+    assert proc.returncode == 0, proc.stdout[-2000:]
+    glob = np.array((tmp_path / f"{out.name}.global").read_text().split(), float)
+    return glob, np.loadtxt(out, skiprows=9)[:, 1:]
+
+
 @pytest.mark.mpi
 def test_two_ranks_give_the_forces_of_one(tmp_path):
-    """A scene with the barrier (J_c 0.9, so that the displaced state puts
-    hundreds of triangles inside it) split over two ranks, newton_bond on and
-    off: the same forces, energies, virial and counts. The barrier's virial
-    is a pressure: xx = yy, xy = 0 (a shear keeps every area)."""
-    scene = write_scene(
-        build_scene(SceneSpec(gamma_deg=30.0, n_wall=800, area_floor=0.9)), tmp_path / "scene"
-    )
-    states = []
-    for nprocs, newton in ((1, "on"), (2, "on"), (2, "off")):
-        out = tmp_path / f"forces_{nprocs}_{newton}.dump"
-        args = ["-in", str(DECK), "-log", f"{out}.log", "-screen", "none", "-nocite"]
-        args += ["-var", "scene", str(scene), "-var", "out", str(out)]
-        args += ["-var", "newton", newton, "-var", "amp", "0.015"]
-        proc = subprocess.run(
-            mpi_launcher(nprocs) + ["lmp", *args],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            env=mpi_environment(),
-        )
-        assert proc.returncode == 0, proc.stdout[-2000:]
-        glob = np.array((tmp_path / f"{out.name}.global").read_text().split(), float)
-        states.append((glob, np.loadtxt(out, skiprows=9)[:, 1:]))
-    one = states[0]
+    """The scene split over two ranks, newton_bond on and off: the same
+    forces, energies, virial and counts. The barrier's virial is a
+    pressure: xx = yy, xy = 0 (a shear keeps every area)."""
+    scene = barrier_scene(tmp_path / "scene")
+    one = barrier_state(tmp_path, scene)
     assert one[0][4] > 100 and 0.0 < one[0][5] < 0.9  # inside the barrier, none turned
     assert one[0][1] == pytest.approx(one[0][2], rel=1e-12)
     assert abs(one[0][3]) < 1e-12 * one[0][1]
-    for two in states[1:]:
+    for newton in ("on", "off"):
+        two = barrier_state(tmp_path, scene, 2, newton)
         assert np.allclose(two[1], one[1], rtol=0.0, atol=1e-12 * np.abs(one[1]).max())
         assert np.allclose(two[0], one[0], rtol=1e-12, atol=1e-12 * abs(one[0][1]))
 
