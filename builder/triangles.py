@@ -15,8 +15,8 @@ per unit area, as stiff against losing area as the lattice itself.
 
 A0 is shared by angle types, not written per triangle: each triangle's
 reference area is rounded to a grid of ``AREA_STEP`` in ln A, so the data
-file holds one coefficient line per grid value a body uses (about two
-thousand) instead of one per triangle (38,000 at 6,400 disk points), and
+file holds one coefficient line per grid value a body uses (2,624 for both
+bodies at 6,400 disk points) instead of one per triangle (36,968), and
 J at rest is 1 within AREA_STEP / 2. That moves where the barrier starts by
 at most 5e-4 of J_c and leaves every triangle at rest, far above J_c, at
 zero energy.
