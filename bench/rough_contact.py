@@ -358,6 +358,7 @@ READINGS = {
     "L0.2p_floor0.5": {**PROFILE, "area_floor": 0.5},
     "L0.2p_floor0.3": {**PROFILE, "area_floor": 0.3},
     "smooth_vn0.25_floor0.5": {"roughness": 0.0, "vn": 0.25, "area_floor": 0.5},
+    "smooth_floor0.5": {"roughness": 0.0, "area_floor": 0.5},
     "L0.2": {"roughness_length": 0.2},
     "smooth": {"roughness": 0.0},
     "L0.2_vn0.05": {"roughness_length": 0.2, "vn": 0.05},
