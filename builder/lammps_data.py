@@ -21,6 +21,7 @@ from ground.paths import BUILD
 
 from .contact_table import ensure_table, table_name
 from .scene import DISK, Scene
+from .triangles import ANGLE_STYLE
 
 # Decks run from the project's root and find the contact tables here: derived
 # files, made when first needed, so under build/ and not in the source tree.
@@ -69,8 +70,10 @@ def network_data_text(
     kb_over_ka: float,
     springs: str,
     pad: float,
+    angles=None,
 ) -> str:
-    """A 2-D data file of point masses 1 and springs, one bond type per spring."""
+    """A 2-D data file of point masses 1 and springs, one bond type per spring;
+    with ``angles`` (builder.triangles.Triangles) the barrier's triangles too."""
     n, m = len(positions), len(pairs)
     lo = (positions.min(axis=0) - pad).tolist()
     hi = (positions.max(axis=0) + pad).tolist()
@@ -94,6 +97,17 @@ def network_data_text(
         "\nBonds\n\n",
         _rows(bond_ids, bond_ids, pairs[:, 0] + 1, pairs[:, 1] + 1),
     ]
+    if angles is not None:
+        counts = f"{len(angles.atoms)} angles\n{len(angles.coefficients)} angle types\n"
+        parts[1] = parts[1][:-1] + counts + "\n"
+        ids = np.arange(1, len(angles.atoms) + 1)
+        types = np.arange(1, len(angles.coefficients) + 1)
+        parts += [
+            f"\nAngle Coeffs # {ANGLE_STYLE}\n\n",
+            _rows(types, *angles.coefficients.T),
+            "\nAngles\n\n",
+            _rows(ids, angles.types, *(angles.atoms + 1).T),
+        ]
     return "".join(parts)
 
 
@@ -123,6 +137,7 @@ def data_file_text(scene: Scene, springs: str = DEFAULT_SPRINGS, placed: bool = 
         spec.kb_over_ka,
         springs,
         pad=2.0 * scene.info["disk_spacing"],
+        angles=scene.angles,
     )
 
 
@@ -172,6 +187,7 @@ def settings_text(
         f"variable wall_last   index {info['wall_row_tags'][1]}\n"
         f"variable table       index {table}\n"
         f"variable springs     index {springs}\n"
+        + (f"variable angles      index {ANGLE_STYLE}\n" if scene.angles is not None else "")
         + (f"variable data        index {bodies}\n" if bodies is not None else "")
         + ("variable data_format index restart\n" if restart else "")
         + f"variable disk_dx     index {float(shift[0])!r}\n"
@@ -278,13 +294,17 @@ class System:
     k4: np.ndarray
 
 
+# a data file's sections; the barrier's angles (--area-floor) are read past
+SECTIONS = ("Masses", "Bond Coeffs", "Atoms", "Velocities", "Bonds", "Angle Coeffs", "Angles")
+
+
 def _sections(text: str) -> dict[str, list[str]]:
     sections, name = {"header": []}, "header"
     for line in text.splitlines():
         stripped = line.split("#")[0].strip()
         if not stripped:
             continue
-        if stripped in ("Masses", "Bond Coeffs", "Atoms", "Velocities", "Bonds"):
+        if stripped in SECTIONS:
             name = stripped
             sections[name] = []
         else:

@@ -17,6 +17,7 @@ from ground.errors import InputError
 from . import bodies
 from .declared import Option, by_name, with_options
 from .materials import spring_constant
+from .triangles import AREA_FLOOR
 
 # LAMMPS atom types.
 DISK_SURFACE, DISK_INTERIOR, WALL_SURFACE, WALL_INTERIOR, WALL_FIXED = 1, 2, 3, 4, 5
@@ -227,6 +228,10 @@ SCENE_OPTIONS = (
            "the pressure over the modulus held (docs/model.md, 'The model as the resolution "
            "grows')",
            words=CONTACT_SCALINGS, made_by="changed"),
+    Option("area_floor", 0.0, "J_c of a barrier against the bodies' triangles turning inside "
+           "out: an energy on each triangle whose area falls below J_c times its area at rest, "
+           "diverging as the area vanishes (docs/rough_contact.md); 0: no barrier, the springs "
+           "alone", AREA_FLOOR, applies="wall", made_by="changed"),
     Option("k2_over_k1", 3.0 / 7.0, "square lattice only: diagonal over nearest spring "
            "constant", K2_OVER_K1, study=False),
     Option("kb_over_ka", 1e-3, "bond over spring constant", KB_OVER_KA, study=False, cli=False),
@@ -376,6 +381,8 @@ class Scene:
     springs: np.ndarray  # (m, 2) 0-based atom indices
     ka: np.ndarray  # (m,) quadratic spring constants
     info: dict = field(default_factory=dict)
+    # the barrier's angles (builder.triangles.Triangles) with area_floor > 0, else None
+    angles: object = None
     # where the disk's own frame was placed: positions = frame + disk_centre
     disk_centre: np.ndarray = field(default_factory=lambda: np.zeros(2))
 

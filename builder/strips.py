@@ -19,6 +19,7 @@ from ground.errors import InputError, require_choice
 from . import bodies
 from .lammps_data import network_data_text
 from .scene import K2_OVER_K1
+from .triangles import ANGLE_STYLE, barrier_triangles
 
 GRIP = 1.5  # grips: the points within this many spacings of an end
 TYPE_NAMES = {1: "strip", 2: "left grip", 3: "right grip"}
@@ -126,8 +127,10 @@ def make_strip(spec: StripSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return drop_loose_points(points, pairs, stiffness)
 
 
-def write_strip(spec: StripSpec, folder: Path | str) -> Path:
-    """strip.data and strip.lmp (the gauge geometry for decks/stretch.lmp).
+def write_strip(spec: StripSpec, folder: Path | str, area_floor: float = 0.0) -> Path:
+    """strip.data and strip.lmp (the gauge geometry for decks/stretch.lmp);
+    with ``area_floor`` > 0 the barrier's angles too, k = ka (builder/triangles.py),
+    to show that they leave the moduli as they are.
 
     Parameters
     ----------
@@ -162,6 +165,9 @@ def write_strip(spec: StripSpec, folder: Path | str) -> Path:
             spec.kb_over_ka,
             "class2",
             pad=1.0,
+            angles=barrier_triangles(points, pairs, [(np.arange(len(points)), 1.0)], area_floor)
+            if area_floor > 0.0
+            else None,
         )
     )
     # Gauges in the middle third, away from the grips and the free edges.
@@ -172,5 +178,6 @@ def write_strip(spec: StripSpec, folder: Path | str) -> Path:
         f"variable inner_y   index {spec.width / 4.0!r}\n"
         f"variable edge_y    index {spec.width / 2.0 - 1.5!r}\n"
         f"variable length    index {spec.length!r}\n"
+        + (f"variable angles    index {ANGLE_STYLE}\n" if area_floor > 0.0 else "")
     )
     return folder

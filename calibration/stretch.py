@@ -92,10 +92,15 @@ def linear_coefficient(x: np.ndarray, y: np.ndarray) -> float:
 
 
 def run_stretch(
-    spec: StripSpec, folder: Path | str, strain: float = 2e-4, steps: int = 5
+    spec: StripSpec,
+    folder: Path | str,
+    strain: float = 2e-4,
+    steps: int = 5,
+    area_floor: float = 0.0,
 ) -> Stretch:
-    """Write the strip, stretch it with LAMMPS and read back the settled states."""
-    folder = write_strip(spec, folder)
+    """Write the strip, stretch it with LAMMPS and read back the settled states
+    (``area_floor``: with the barrier's angles, builder/triangles.py)."""
+    folder = write_strip(spec, folder, area_floor)
     variables = {"strip": str(folder), "strain": repr(strain), "nsteps": str(steps)}
     run_lmp(variables, folder / "log.lammps", deck=DECK)
     return read_stretch(spec, folder)

@@ -251,6 +251,7 @@ def run_python(variables: dict[str, str], log: Path) -> float:
         "polyline_load": "none",
         "springs_load": "none",
         "impact2d_load": "none",
+        "area_barrier_load": "none",
     }
     try:
         lmp = open_lammps(variables, log)
@@ -265,6 +266,18 @@ def run_python(variables: dict[str, str], log: Path) -> float:
     return time.perf_counter() - start
 
 
+def data_has_angles(data: Path) -> bool:
+    """Whether a data file's header declares angles (the barrier's, --area-floor)."""
+    with open(data) as handle:
+        for line in handle:
+            words = line.split()
+            if words[-1:] == ["angles"]:
+                return True
+            if words[-2:] == ["xlo", "xhi"]:  # the header's counts come before the box
+                return False
+    return False
+
+
 def data_to_restart(data: Path, restart: Path, springs: str, log: Path | None = None) -> Path:
     """Write the data file ``data`` of bodies as a binary restart, in this
     process (decks/write_restart.lmp), LAMMPS's log into ``log`` (none if
@@ -277,7 +290,9 @@ def data_to_restart(data: Path, restart: Path, springs: str, log: Path | None = 
         ``restart``.
     """
     variables = {"data": str(data), "restart": str(restart), "springs": springs}
-    variables.update({"springs_load": "none", "impact2d_load": "none"})
+    variables.update({"springs_load": "none", "impact2d_load": "none", "area_barrier_load": "none"})
+    if data_has_angles(data):  # the barrier's triangles (--area-floor): atom_style angle
+        variables["angles"] = "area/barrier"
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
@@ -298,6 +313,8 @@ STYLE_LIBRARIES = {
     ("bond", "harmonic/quartic"): ("libharmonic_quartic.so", "harmonic_quartic_register"),
     ("compute", "motion/2d"): ("libimpact_2d.so", "impact_2d_register"),
     ("fix", "nve/2d"): ("libimpact_2d.so", "impact_2d_register"),
+    ("angle", "area/barrier"): ("libarea_barrier.so", "area_barrier_register"),
+    ("fix", "area/barrier"): ("libarea_barrier.so", "area_barrier_register"),
 }
 
 

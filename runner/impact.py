@@ -24,6 +24,7 @@ RUN_OUTPUTS = (
     "dump.lammpstrj",
     "run.json",
     "result.json",
+    "barrier.dat",
 )
 
 

@@ -12,6 +12,7 @@ from builder.run_options import MAX_DRIFT
 from builder.scene import MODEL_READINGS
 from ground.gate import gate
 
+from .barrier import barrier_counts
 from .binary import binary_energy_split, binary_normals, binary_rebound, momentum_change
 from .restitution import contact_window, energy_split, rebound_from_series, side_clearance, touches
 from .series import read_energies, read_series
@@ -127,6 +128,7 @@ def analyse_run(folder: Path | str) -> dict:
         **run_provenance(run),
     }
     result.update(energy_split(series, energies, scene["disk_mass"]))
+    result.update(barrier_counts(folder))  # with --area-floor only
     result["drift_exceeded"] = bool(abs(result["energy_drift"]) > result["max_drift"])
     return result
 

