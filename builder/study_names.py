@@ -95,6 +95,29 @@ LIMITS = {
         "contact_scaling": "physical",
     },
     "smooth": {"roughness": 0.0, "contact_scaling": "physical"},
+    # the profile with a barrier against the triangles turning inside out
+    # (area_floor 0.5: docs/rough_contact.md, "The barrier"): the lattice's
+    # artefact removed, the small-strain moduli unchanged
+    "profile-floor": {
+        "roughness_length": PROFILE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+        "area_floor": 0.5,
+    },
+    # the floor's surfaces of twice and 3.3 times the slope (L = 0.1 R and
+    # the paper's 0.06 R): friction against the rms slope
+    "slope0.3-floor": {
+        "roughness_length": 0.1,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+        "area_floor": 0.5,
+    },
+    "paper-slope-floor": {
+        "roughness_length": PAPER_SLOPE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+        "area_floor": 0.5,
+    },
     # the paper's slope (0.5, the mean of its disk's 0.61 and its wall's 0.39
     # at 800 points: bench/surface_slopes.py) as a continuous profile
     "paper-slope": {

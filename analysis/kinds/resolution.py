@@ -68,7 +68,14 @@ TRIANGULAR_UP_TO = 6400
 # FULL_SAMPLES_UP_TO, the multilevel allocation sqrt(V / C) for a cost per
 # impact growing as N^1.5 and a variance of the differences that does not
 # grow; the smooth baseline at SMOOTH_SAMPLES seeds up to SMOOTH_UP_TO.
-COUPLED = ("profile", "smooth", "paper-slope")
+COUPLED = (
+    "profile",
+    "smooth",
+    "paper-slope",
+    "profile-floor",
+    "slope0.3-floor",
+    "paper-slope-floor",
+)
 SMOOTH_SAMPLES = 4
 SMOOTH_UP_TO = 6400
 
