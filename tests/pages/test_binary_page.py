@@ -1,5 +1,5 @@
-"""The binary study's comparison with the wall (analysis.binary_comparison, pages.binary), and
-its committed page made again from the committed tables."""
+"""The binary study's comparison with the wall (analysis.binary_comparison, pages.binary);
+its committed pages are made again by tests/docs/test_pages_reproducible.py."""
 
 from __future__ import annotations
 
@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 from analysis.binary_comparison import comparison, verdict
-from tests.helpers import ROOT
 from tests.synthetic import impact_rows
 
 WALL_BETA = lambda psi: np.minimum(0.2, -1 + 0.3 * psi)  # noqa: E731
@@ -56,29 +55,6 @@ def test_only_impacts_both_studies_have_are_compared():
     numbers = comparison(disks, wall, resamples=10)
     assert numbers["pairs"] == len(disks)
     assert max(numbers["lattices"]["random"]["impacts"]) == 5
-
-
-@pytest.mark.slow
-def test_the_committed_grazing_pages_are_made_again_from_their_tables(tmp_path):
-    """docs/studies/binary_grazing/binary_grazing.md from its folder and the walls'
-    tables its study file names (docs/studies/grazing/,
-    docs/studies/binary_grazing_wall_v0.005/):
-    the same page, but for where it says its files are."""
-    from pages.report import report_from_tables
-    from runner.study.studies import study_file
-
-    docs = ROOT / "docs" / "studies"
-    page = tmp_path / "binary_grazing.md"
-    report_from_tables(
-        docs / "binary_grazing",
-        page,
-        preset="binary_grazing",
-        out=tmp_path / "tables",
-        readings={name: docs / name for name in study_file("binary_grazing").readings},
-        sections=study_file("binary_grazing").sections,
-    )
-    made = page.read_text().replace(str(tmp_path / "tables"), "docs/studies/binary_grazing")
-    assert made == (docs / "binary_grazing" / "binary_grazing.md").read_text()
 
 
 def test_two_identical_disks_have_the_walls_k_and_a_lighter_partner_more():

@@ -141,7 +141,8 @@ def test_the_wall_width_file_is_the_study_of_its_table():
     ("name", "table_rows"),
     [
         ("scene_readings", 18 + 3),
-        pytest.param("model_readings", 35, marks=pytest.mark.slow),
+        # model_readings (35 rows): tests/docs/test_pages_reproducible.py makes it
+        # again byte for byte, a 40 s page, once is enough
         ("fact_sensitivity", 5),
         ("wall_width", 3 * 2),
     ],
