@@ -76,9 +76,9 @@ def test_made_by_gives_each_committed_pages_command():
     """The "made by" line that pages.command derives from the declarations
     is, for every committed results page, the line the page states."""
     checked = 0
-    for page in sorted((ROOT / "docs").glob("*.md")):
+    for page in sorted((ROOT / "docs" / "studies").glob("*/*.md")):
         said = re.search(r"Made by `(python -m runner study (\S+) [^`]*)`", page.read_text())
-        record = page.with_suffix("") / "study.json"
+        record = page.parent / "study.json"
         if said and record.is_file():
             assert made_by(json.loads(record.read_text()), said[2]) == said[1], page.name
             checked += 1

@@ -395,6 +395,9 @@ def refused_before_any_work(case, places, clean_tree, tmp_path, monkeypatch, cap
                 monkeypatch.setenv(key, value)
             monkeypatch.chdir(ROOT)
             monkeypatch.setattr("runner.cluster.workers.JOIN_SECONDS", 3)
+            # a command runs alone in its process: what an earlier case was
+            # granted (a study's docs folder) is not this one's
+            monkeypatch.setattr("ground.gate._granted", set())
             module = importlib.import_module(case.module)
             if "scheduler" in case.id:  # joining comes first: the sweep must not
                 monkeypatch.setattr("runner.cluster.driver.drive", refuse_work)

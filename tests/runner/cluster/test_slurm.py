@@ -162,7 +162,8 @@ def test_a_study_on_two_ranks_under_srun_gives_runner_impacts_rows(slurm, tmp_pa
     rows = study_on_ranks(tmp_path, name, *ON_SLURM, env=slurm)
     assert len(rows) == 2
     assert without_times(rows) == without_times(impact_rows_on_ranks(rows, tmp_path))
-    for run in (RUNS / name).rglob("run.json"):
+    # each impact's run.json (the study's own, beside its tables, has no launcher)
+    for run in (r.parent / "run.json" for r in (RUNS / name).rglob("result.json")):
         assert json.loads(run.read_text())["launcher"] == "srun --mpi=pmix -n 2"
     worker = "".join(path.read_text() for path in (RUNS / name / "slurm").glob("*.err"))
     assert len(re.findall(r"Threads:\s+1\n", worker)) == 1  # one worker, an impact at a time

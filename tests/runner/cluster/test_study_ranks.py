@@ -49,7 +49,8 @@ def test_a_study_on_two_ranks_gives_runner_impacts_rows_bit_for_bit(tmp_path):
     rows = study_on_ranks(tmp_path, "test_ranks_local")
     assert len(rows) == 2
     assert without_times(rows) == without_times(impact_rows_on_ranks(rows, tmp_path))
-    for run in (RUNS / "test_ranks_local").rglob("run.json"):  # each on two ranks, by mpirun
+    # each impact on two ranks, by mpirun (the study's own run.json is its provenance)
+    for run in (r.parent / "run.json" for r in (RUNS / "test_ranks_local").rglob("result.json")):
         record = json.loads(run.read_text())
         assert record["options"]["nprocs"] == 2
         assert record["launcher"] == "mpirun --bind-to none -np 2"
