@@ -1,11 +1,14 @@
-"""Run time against error, with the resolution in it (issue 46), from the profile reading's tables.
+"""Run time against error, with the resolution in it (issue 46), from a
+resolution study's tables.
 
     python bench/resolution_error.py --docs
-    python bench/resolution_error.py [--rows CSV] [--timings CSV] [--out FOLDER] [--docs]
+    python bench/resolution_error.py [--study NAME] [--rows CSV] [--timings CSV]
+                                     [--out FOLDER] [--docs]
 
-No runs: it reads the committed rows (docs/studies/resolution_profile/rows.csv) and
-each impact's LAMMPS seconds (timings.csv), reading ``profile`` on the random
-disk. For e near normal incidence (e_normal) and Walton's mu (measured way),
+No runs: it reads a study's committed rows (docs/studies/NAME/rows.csv) and
+each impact's LAMMPS seconds (timings.csv), the study's coupled reading on
+the random disk: resolution_floor's ``profile-floor`` (the default: the model
+with the barrier, whose limit exists) or resolution_profile's ``profile``. For e near normal incidence (e_normal) and Walton's mu (measured way),
 the limit Q_limit is analysis.kinds.resolution.limits over every level. Three
 estimates at each finest level N, each with its error against Q_limit,
 sqrt(bias^2 + stat^2), and the seconds actually spent on the levels it uses:
@@ -36,36 +39,47 @@ from ground.checks import InPath
 from ground.errors import InputError
 from ground.paths import study_docs
 
-TABLES = study_docs("resolution_profile")
-READING, LATTICE = "profile", "random"
+# study -> (its reading, how loaded the machine was while its seconds were measured)
+STUDIES = {
+    "resolution_floor": (
+        "profile-floor",
+        "while the study ran on both cores of a shared 2-core machine, beside other "
+        "jobs at nice 19 (load about 2 to 4)",
+    ),
+    "resolution_profile": ("profile", "on a shared 2-core machine under a load of 10 to 17"),
+}
+LATTICE = "random"
 QUANTITIES = ("e_normal", "mu")
 
 
 def parser():
     p = bench_parser(__file__, __doc__, out="resolution_error.md and .png")
     p.add_argument(
-        "--rows", type=InPath("file"), default=TABLES / "rows.csv", help="the impacts' rows"
-    )
+        "--study", choices=sorted(STUDIES), default="resolution_floor",
+        help="the resolution study whose tables are read (default: resolution_floor)",
+    )  # fmt: skip
     p.add_argument(
-        "--timings",
-        type=InPath("file"),
-        default=TABLES / "timings.csv",
-        help="each impact's seconds",
-    )
+        "--rows", type=InPath("file"), default=None,
+        help="the impacts' rows (default: docs/studies/STUDY/rows.csv)",
+    )  # fmt: skip
+    p.add_argument(
+        "--timings", type=InPath("file"), default=None,
+        help="each impact's seconds (default: docs/studies/STUDY/timings.csv)",
+    )  # fmt: skip
     return p
 
 
-def read(rows_csv: Path, timings_csv: Path) -> list[dict]:
+def read(rows_csv: Path, timings_csv: Path, reading: str) -> list[dict]:
     """The reading's rows, each with its ``wall_seconds`` and ``atom_steps``."""
     key = ("reading", "study_lattice", "seed", "gamma_deg")
     with open(timings_csv) as f:
         seconds = {tuple(r[k] for k in key): float(r["wall_seconds"]) for r in csv.DictReader(f)}
     with open(rows_csv) as f:
         rows = [
-            r for r in csv.DictReader(f) if r["limit"] == READING and r["study_lattice"] == LATTICE
+            r for r in csv.DictReader(f) if r["limit"] == reading and r["study_lattice"] == LATTICE
         ]
     if not rows:
-        raise InputError(f"--rows {rows_csv} has no rows of reading {READING} ({LATTICE})")
+        raise InputError(f"--rows {rows_csv} has no rows of reading {reading} ({LATTICE})")
     for r in rows:
         r["wall_seconds"] = seconds.get(tuple(r[k] for k in key), 0.0)
         r["atom_steps"] = float(r["steps"]) * (float(r["n_disk"]) + float(r["n_wall_points"]))
@@ -99,17 +113,18 @@ def entry(method, n, ns, value, stat, reference, rows, target, band=None) -> dic
 def estimates(rows: list[dict]) -> dict:
     """quantity -> {"limit": its limit over every level, "rows": the three
     estimates (module docstring) at each finest level}."""
+    reading = rows[0]["limit"]  # read() keeps one reading
     summary = resolution.summaries(rows)
     limits = resolution.limits(summary, QUANTITIES, rows)
     out = {}
     for q in QUANTITIES:
-        lim = limits[(READING, LATTICE, q)]
+        lim = limits[(reading, LATTICE, q)]
         target = resolution.TARGETS[q]
         out[q] = {"limit": lim, "target": target, "rows": []}
         if lim["status"] != "limit":
             continue
         reference = lim["value"]
-        found = resolution.levels_of(summary, READING, LATTICE, q)
+        found = resolution.levels_of(summary, reading, LATTICE, q)
         ns = [n for n, _, _ in found if n >= extrapolation.FIT_FROM]
         table = out[q]["rows"]
         for n, value, sd in found:
@@ -153,12 +168,13 @@ def estimates(rows: list[dict]) -> dict:
     return out
 
 
-def page(found: dict) -> str:
+def page(found: dict, study: str) -> str:
+    reading, load = STUDIES[study]
     parts = [
-        "The profile reading's committed impacts (docs/studies/resolution_profile/rows.csv, one "
+        f"The {reading} reading's committed impacts (docs/studies/{study}/rows.csv, one "
         "surface per seed at every N, random disk) and their LAMMPS seconds "
         "(timings.csv); no new runs. **The seconds are upper bounds**: they were "
-        "measured on a shared 2-core machine under a load of 10 to 17, so the atom-steps "
+        f"measured {load}, so the atom-steps "
         "(steps times the disk's and the wall's points, summed over the impacts) are "
         "given beside them as the load-free measure of the work.",
         "Error = sqrt(bias^2 + stat^2) with bias = estimate - Q_limit (the limit from "
@@ -243,7 +259,12 @@ def draw(found: dict, path: Path) -> None:
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
-        rows = read(args.rows, args.timings)
+        tables = study_docs(args.study)
+        rows = read(
+            args.rows or tables / "rows.csv",
+            args.timings or tables / "timings.csv",
+            STUDIES[args.study][0],
+        )
     except InputError as error:
         return refuse(__file__, error)
     found = estimates(rows)
@@ -252,8 +273,10 @@ def main(argv: list[str] | None = None) -> int:
     write_report(
         "resolution_error",
         "Run time against error, with the resolution in it",
-        "python bench/resolution_error.py" + (" --docs" if args.docs else ""),
-        page(found) + "\n\n![error against seconds](resolution_error.png)",
+        "python bench/resolution_error.py"
+        + ("" if args.study == "resolution_floor" else f" --study {args.study}")
+        + (" --docs" if args.docs else ""),
+        page(found, args.study) + "\n\n![error against seconds](resolution_error.png)",
         folder=folder,
     )
     draw(found, folder / "resolution_error.png")

@@ -41,11 +41,12 @@ def small_tables(tmp_path):
 def test_one_level_error_and_seconds(tmp_path):
     rows_csv, timings_csv = small_tables(tmp_path)
     out = tmp_path / "out"
-    argv = ["--rows", str(rows_csv), "--timings", str(timings_csv), "--out", str(out)]
+    argv = ["--study", "resolution_profile", "--rows", str(rows_csv), "--timings",
+            str(timings_csv), "--out", str(out)]  # fmt: skip
     assert resolution_error.main(argv) == 0
     assert (out / "resolution_error.md").read_text().count("| one level |") >= len(LEVELS)
 
-    rows = resolution_error.read(rows_csv, timings_csv)
+    rows = resolution_error.read(rows_csv, timings_csv, "profile")
     summary = resolution.summaries(rows)
     found = resolution_error.estimates(rows)
     checked = 0
