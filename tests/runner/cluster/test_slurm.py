@@ -116,7 +116,7 @@ def test_a_slurm_job_that_ends_is_replaced_and_fails_no_impact(slurm):
 
 
 def test_the_documented_batch_script_runs_as_written(slurm, tmp_path):
-    """docs/slurm_study.sh under sbatch, with a tiny study: the driver is a
+    """docs/cluster/slurm_study.sh under sbatch, with a tiny study: the driver is a
     job, its workers another."""
     name = "test_slurm_script"
     subprocess.run(["rm", "-rf", str(RUNS / name)])
@@ -125,7 +125,7 @@ def test_the_documented_batch_script_runs_as_written(slurm, tmp_path):
             "--walltime", "00:10:00"]  # fmt: skip
     proc = subprocess.run(
         ["sbatch", "--wait", f"--output={tmp_path}/driver-%j.out", f"--chdir={ROOT}",
-         str(ROOT / "docs" / "slurm_study.sh"), *tiny],
+         str(ROOT / "docs" / "cluster" / "slurm_study.sh"), *tiny],
         env=slurm, capture_output=True, text=True, timeout=600,
     )  # fmt: skip
     log = "".join(p.read_text() for p in tmp_path.glob("driver-*.out"))

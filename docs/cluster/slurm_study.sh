@@ -4,8 +4,8 @@
 # cancels them when it ends. Submit it from the project's folder (make setup
 # done there):
 #
-#   sbatch docs/slurm_study.sh                       # the paper study
-#   sbatch docs/slurm_study.sh demo --samples 8      # any study; options override
+#   sbatch docs/cluster/slurm_study.sh                       # the paper study
+#   sbatch docs/cluster/slurm_study.sh demo --samples 8      # any study; options override
 #
 # Killed by its time limit or scancel, it cancels the workers' jobs and exits;
 # submit it again and it runs what is missing.
