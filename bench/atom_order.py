@@ -109,8 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         f"({os.cpu_count()} cores). The builder bins the interiors beyond "
         f"{assembly.SAMPLE_ORDER_UP_TO:,} disk points.\n\n"
         + markdown_table(
-            ["disk points N", "interiors", "atoms", "steps", "M atom-steps/s", "Bond", "e",
-             "load"],
+            ["disk points N", "interiors", "atoms", "steps", "M atom-steps/s", "Bond", "e", "load"],
             rows,
         )  # fmt: skip
         + "\n\nRate in bins over rate in the sampler's order, one rank:\n\n"

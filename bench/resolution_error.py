@@ -8,8 +8,9 @@ resolution study's tables.
 No runs: it reads a study's committed rows (docs/studies/NAME/rows.csv) and
 each impact's LAMMPS seconds (timings.csv), the study's coupled reading on
 the random disk: resolution_floor's ``profile-floor`` (the default: the model
-with the barrier, whose limit exists) or resolution_profile's ``profile``. For e near normal incidence (e_normal) and Walton's mu (measured way),
-the limit Q_limit is analysis.kinds.resolution.limits over every level. Three
+with the barrier, whose limit exists) or resolution_profile's ``profile``.
+For e near normal incidence (e_normal) and Walton's mu (measured way), the
+limit Q_limit is analysis.kinds.resolution.limits over every level. Three
 estimates at each finest level N, each with its error against Q_limit,
 sqrt(bias^2 + stat^2), and the seconds actually spent on the levels it uses:
 

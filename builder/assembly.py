@@ -34,7 +34,6 @@ from .scene import (
 )
 from .triangles import barrier_triangles
 
-
 # Beyond this many disk points the interiors are stored in spatial bins, so
 # that a spring's two atoms lie close in memory: the sampler's order scatters
 # them, and once the atoms outgrow the cache the bond loop waits on memory

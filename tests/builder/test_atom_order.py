@@ -41,8 +41,7 @@ def as_sets(scene):
         for pair, k in zip(scene.springs, scene.ka)
     }
     triangles = {
-        frozenset(map(tuple, scene.positions[triple].tolist()))
-        for triple in scene.angles.atoms
+        frozenset(map(tuple, scene.positions[triple].tolist())) for triple in scene.angles.atoms
     }
     return atoms, springs, triangles
 
