@@ -19,6 +19,13 @@
    doubles that do not overlap (as the bond style reads them), without a
    row pointer per atom: the same updates in the same order, in fewer
    instructions (docs/benchmarks/resolution_cost.md).
+
+   Velocity Verlet closes step n with a half kick and opens step n+1 with
+   another, two passes over v and f with nothing between them but the
+   end-of-step fixes and the output. When none of them reads the atoms at
+   step n, the closing kick waits and is done in the opening pass, v += dtfm
+   f twice in a row: the same operations in the same order, so the same bits,
+   in one pass over the arrays instead of two (docs/benchmarks/loop_rate.md).
 ------------------------------------------------------------------------- */
 
 #include "fix_nve_2d.h"
@@ -26,7 +33,12 @@
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "memory.h"
+#include "modify.h"
+#include "output.h"
+#include "update.h"
+#include "utils.h"
 
 using namespace LAMMPS_NS;
 
@@ -40,12 +52,35 @@ struct Vec3 {
 };
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
 
+// KICKS half kicks of v (each v += dtfm f, in order), then, if DRIFT,
+// x += dtv v; dtfm from the per-atom mass (RMASS) or the per-type table
+template <int KICKS, bool DRIFT, bool RMASS>
+void update_atoms(Vec3 *__restrict x, Vec3 *__restrict v, const Vec3 *__restrict f,
+                  const double *__restrict rmass, const double dtf,
+                  const double *__restrict dtfm_type, const int *__restrict type,
+                  const int *__restrict mask, const int bit, const int nlocal, const double dtv)
+{
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & bit)) continue;
+    const double dtfm = RMASS ? dtf / rmass[i] : dtfm_type[type[i]];
+    for (int k = 0; k < KICKS; k++) {
+      v[i].x += dtfm * f[i].x;
+      v[i].y += dtfm * f[i].y;
+    }
+    if (DRIFT) {
+      x[i].x += dtv * v[i].x;
+      x[i].y += dtv * v[i].y;
+    }
+  }
+}
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixNVE2d::FixNVE2d(LAMMPS *lmp, int narg, char **arg) :
-    FixNVE(lmp, narg, arg), dtfm_type(nullptr), ntypes(0)
+    FixNVE(lmp, narg, arg), dtfm_type(nullptr), ntypes(0), every(nullptr), nevery_fixes(0),
+    pending(false), fuse(false)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix nve/2d requires dimension 2");
 }
@@ -55,6 +90,28 @@ FixNVE2d::FixNVE2d(LAMMPS *lmp, int narg, char **arg) :
 FixNVE2d::~FixNVE2d()
 {
   memory->destroy(dtfm_type);
+  memory->destroy(every);
+}
+
+/* ----------------------------------------------------------------------
+   the end-of-step fixes of this run and how often each acts
+------------------------------------------------------------------------- */
+
+void FixNVE2d::init()
+{
+  FixNVE::init();
+  memory->destroy(every);
+  every = nullptr;
+  nevery_fixes = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (modify->fix[i]->setmask() & FixConst::END_OF_STEP) nevery_fixes++;
+  if (nevery_fixes) memory->create(every, nevery_fixes, "nve/2d:every");
+  int n = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (modify->fix[i]->setmask() & FixConst::END_OF_STEP) every[n++] = modify->fix[i]->nevery;
+  pending = false;
+  // rRESPA calls final_integrate at every inner level: never deferred there
+  fuse = !utils::strmatch(update->integrate_style, "^respa");
 }
 
 /* ----------------------------------------------------------------------
@@ -71,76 +128,77 @@ void FixNVE2d::set_dtfm()
   for (int t = 1; t <= ntypes; t++) dtfm_type[t] = dtf / atom->mass[t];
 }
 
+/* ----------------------------------------------------------------------
+   true if anything may read x or v after this step's final_integrate: the
+   run's last step, output (thermo, dump, restart), an end-of-step fix
+------------------------------------------------------------------------- */
+
+bool FixNVE2d::velocities_read(bigint step) const
+{
+  if (step >= update->laststep || step == output->next) return true;
+  for (int i = 0; i < nevery_fixes; i++)
+    if (every[i] <= 0 || step % every[i] == 0) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   kicks half kicks (1 or 2), then the drift if drift
+------------------------------------------------------------------------- */
+
+void FixNVE2d::move_atoms(int kicks, bool drift)
+{
+  int nlocal = atom->nlocal;
+  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
+  if (nlocal == 0) return;
+  double *const rmass = atom->rmass;
+  if (!rmass) set_dtfm();
+  Vec3 *const x = reinterpret_cast<Vec3 *>(atom->x[0]);
+  Vec3 *const v = reinterpret_cast<Vec3 *>(atom->v[0]);
+  const Vec3 *const f = reinterpret_cast<const Vec3 *>(atom->f[0]);
+  const int *const type = atom->type;
+  const int *const mask = atom->mask;
+  const int bit = groupbit;
+  if (rmass) {
+    if (!drift)
+      update_atoms<1, false, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+    else if (kicks == 1)
+      update_atoms<1, true, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+    else
+      update_atoms<2, true, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+  } else {
+    if (!drift)
+      update_atoms<1, false, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+    else if (kicks == 1)
+      update_atoms<1, true, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+    else
+      update_atoms<2, true, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixNVE2d::initial_integrate(int /*vflag*/)
 {
-  Vec3 *const __restrict x = reinterpret_cast<Vec3 *>(atom->x[0]);
-  Vec3 *const __restrict v = reinterpret_cast<Vec3 *>(atom->v[0]);
-  const Vec3 *const __restrict f = reinterpret_cast<const Vec3 *>(atom->f[0]);
-  const double *const __restrict rmass = atom->rmass;
-  const int *const __restrict type = atom->type;
-  const int *const __restrict mask = atom->mask;
-  const int bit = groupbit;
-  const double dt_v = dtv;
-  int nlocal = atom->nlocal;
-  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
-  if (nlocal == 0) return;
-
-  if (rmass) {
-    const double dt_f = dtf;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & bit) {
-        const double dtfm = dt_f / rmass[i];
-        v[i].x += dtfm * f[i].x;
-        v[i].y += dtfm * f[i].y;
-        x[i].x += dt_v * v[i].x;
-        x[i].y += dt_v * v[i].y;
-      }
-  } else {
-    set_dtfm();
-    const double *const __restrict dtfm_t = dtfm_type;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & bit) {
-        const double dtfm = dtfm_t[type[i]];
-        v[i].x += dtfm * f[i].x;
-        v[i].y += dtfm * f[i].y;
-        x[i].x += dt_v * v[i].x;
-        x[i].y += dt_v * v[i].y;
-      }
-  }
+  move_atoms(pending ? 2 : 1, true);
+  pending = false;
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNVE2d::final_integrate()
 {
-  Vec3 *const __restrict v = reinterpret_cast<Vec3 *>(atom->v[0]);
-  const Vec3 *const __restrict f = reinterpret_cast<const Vec3 *>(atom->f[0]);
-  const double *const __restrict rmass = atom->rmass;
-  const int *const __restrict type = atom->type;
-  const int *const __restrict mask = atom->mask;
-  const int bit = groupbit;
-  int nlocal = atom->nlocal;
-  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
-  if (nlocal == 0) return;
+  if (!fuse || velocities_read(update->ntimestep))
+    move_atoms(1, false);
+  else
+    pending = true;
+}
 
-  if (rmass) {
-    const double dt_f = dtf;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & bit) {
-        const double dtfm = dt_f / rmass[i];
-        v[i].x += dtfm * f[i].x;
-        v[i].y += dtfm * f[i].y;
-      }
-  } else {
-    set_dtfm();
-    const double *const __restrict dtfm_t = dtfm_type;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & bit) {
-        const double dtfm = dtfm_t[type[i]];
-        v[i].x += dtfm * f[i].x;
-        v[i].y += dtfm * f[i].y;
-      }
-  }
+/* ----------------------------------------------------------------------
+   a run that ends early (timer timeout) leaves no kick undone
+------------------------------------------------------------------------- */
+
+void FixNVE2d::post_run()
+{
+  if (pending) move_atoms(1, false);
+  pending = false;
 }

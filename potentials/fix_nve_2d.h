@@ -28,14 +28,22 @@ class FixNVE2d : public FixNVE {
  public:
   FixNVE2d(class LAMMPS *, int, char **);
   ~FixNVE2d() override;
+  void init() override;
   void initial_integrate(int) override;
   void final_integrate() override;
+  void post_run() override;
 
  private:
   double *dtfm_type;    // dtf / mass per atom type, once per half step
   int ntypes;
+  int *every;           // nevery of each end-of-step fix, as of init()
+  int nevery_fixes;
+  bool pending;         // the last step's closing half kick is still to do
+  bool fuse;            // may defer it (velocity Verlet, not rRESPA)
 
   void set_dtfm();
+  bool velocities_read(bigint step) const;
+  void move_atoms(int kicks, bool drift);
 };
 
 }    // namespace LAMMPS_NS

@@ -15,9 +15,9 @@ from tests.helpers import ROOT, new_lammps
 pytestmark = pytest.mark.lammps
 
 
-def motion_instance(scene_dir):
-    """The scene in LAMMPS with the disk spinning, group functions and
-    compute motion/2d side by side."""
+def spinning_scene(scene_dir, nve_style="nve"):
+    """The scene in LAMMPS with the disk spinning and springs acting, before
+    any run."""
     from ground.launch import register_styles
 
     lmp = new_lammps()
@@ -38,12 +38,19 @@ def motion_instance(scene_dir):
         "variable spin_x atom vx-0.05*(y-xcm(disk,y))",
         "variable spin_y atom vy+0.05*(x-xcm(disk,x))",
         "velocity disk set v_spin_x v_spin_y NULL",
-        "fix move all nve",
+        f"fix move all {nve_style}",
         "timestep 0.008",
-        "compute motion disk motion/2d",
-        "run 50",
     ]:
         lmp.command(command)
+    return lmp
+
+
+def motion_instance(scene_dir):
+    """The spinning scene after 50 steps, group functions and compute
+    motion/2d side by side."""
+    lmp = spinning_scene(scene_dir)
+    lmp.command("compute motion disk motion/2d")
+    lmp.command("run 50")
     return lmp
 
 
@@ -89,6 +96,50 @@ def test_nve_2d_is_fix_nve_bit_for_bit(small_scene_dir, tmp_path, integrator):
     for name in ("series.dat", "energy.dat"):
         assert filecmp.cmp(outputs[0] / name, outputs[1] / name, shallow=False)
     assert len((outputs[0] / "series.dat").read_text().splitlines()) > 100  # it ran
+
+
+def state_after(scene_dir, nve_style, commands):
+    """Positions, velocities and the step after the commands."""
+    lmp = spinning_scene(scene_dir, nve_style)
+    for command in commands:
+        lmp.command(command)
+    state = (
+        lmp.numpy.extract_atom("x").copy(),
+        lmp.numpy.extract_atom("v").copy(),
+        lmp.extract_global("ntimestep"),
+    )
+    lmp.close()
+    return state
+
+
+@pytest.mark.parametrize(
+    "commands",
+    [
+        ["run 37"],  # no end-of-step fix: every closing kick but the last deferred
+        ["run 13", "run 24 pre no post no"],  # a run ends, the next one starts
+        ["fix out all print 7 '$(vcm(disk,x))' screen no", "thermo 5", "run 37"],
+    ],
+)
+def test_deferred_kick_is_fix_nve_bit_for_bit(small_scene_dir, commands):
+    """fix nve/2d defers the closing half kick of a step that nothing reads
+    to the next step's opening pass: x and v equal fix nve's to the last bit
+    at the end of any run, whatever reads the atoms in between."""
+    x, v, steps = state_after(small_scene_dir, "nve/2d", commands)
+    x_nve, v_nve, _ = state_after(small_scene_dir, "nve", commands)
+    assert steps == 37
+    assert np.array_equal(x, x_nve) and np.array_equal(v, v_nve)
+    assert np.abs(v).max() > 1e-3  # it moves
+
+
+def test_a_run_cut_short_leaves_no_kick_undone(small_scene_dir):
+    """A run that a timeout ends after a deferred kick: fix nve/2d does the
+    kick when the run ends (post_run), so the state is fix nve's after as
+    many steps."""
+    cut = ["timer timeout 00:00:01 every 1", "run 100000000"]
+    x, v, steps = state_after(small_scene_dir, "nve/2d", cut)
+    assert 0 < steps < 100000000
+    x_nve, v_nve, _ = state_after(small_scene_dir, "nve", [f"run {steps}"])
+    assert np.array_equal(x, x_nve) and np.array_equal(v, v_nve)
 
 
 @pytest.mark.parametrize(
