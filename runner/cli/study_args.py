@@ -194,9 +194,10 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
     return {k: tuple(said[k]) if k == "lattices" else said[k] for k in differ}
 
 
-def check_source(study: Study, file) -> None:
+def check_source(study: Study, file, extend: bool = False) -> None:
     """Refuse a study whose folder was first run from another version of its
-    file (``file_changed``); ``study.source`` is what the file says today."""
+    file (``file_changed``; with ``extend``, but for more samples or
+    lattices); ``study.source`` is what the file says today."""
     record = study.folder / "study.json"
     if record.exists() and study.source is not None:
-        file_changed(Study.from_json(record).source, study.source, False, study.name, file)
+        file_changed(Study.from_json(record).source, study.source, extend, study.name, file)

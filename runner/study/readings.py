@@ -44,7 +44,7 @@ from .provenance import machine
 
 # runner study's options that a readings study takes (its file says the rest).
 TAKES = ("preset", "described", "command", "docs", "cluster", "workers", "scheduler")
-TAKES += ("retry_failed",)
+TAKES += ("retry_failed", "extend")
 TAKES += ("jobs", "cores_per_job", "walltime", "queue", "account", "memory")
 TAKES += ("partitions", "batch_size")
 
@@ -135,7 +135,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
         for each in (study, *others):
             try:
                 each.validate()
-                check_source(each, described.path)
+                check_source(each, described.path, args.extend)
                 check_environment(each)
             except InputError as error:
                 told = str(error).removeprefix(f"{described.path}: ")

@@ -287,3 +287,19 @@ def test_a_small_readings_study_runs_and_makes_its_page(tmp_path):
     )
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
     assert "--samples does not apply to the sweep_probe study" in proc.stderr
+    # more samples in the file: refused as a changed file, taken with --extend,
+    # which runs only the new seeds and keeps every row already done
+    path.write_text(path.read_text().replace("samples = 1", "samples = 2"))
+    command = [sys.executable, "-m", "runner", "study", str(path), "--workers", "1"]
+    proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 2 and "--extend takes more samples" in proc.stderr
+    proc = subprocess.run(
+        [*command, "--extend"], cwd=ROOT, capture_output=True, text=True, timeout=600
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "3 already done or failed, 3 to run" in proc.stdout
+    with (RUNS / "sweep_probe" / "rows.csv").open() as handle:
+        extended = list(csv.DictReader(handle))
+    assert len(extended) == 18 and {r["seed"] for r in extended} == {"1", "2"}
+    first = {(r["reading"], r["gamma_deg"]): r["e"] for r in rows}
+    assert {(r["reading"], r["gamma_deg"]): r["e"] for r in extended if r["seed"] == "1"} == first
