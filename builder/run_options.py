@@ -31,6 +31,7 @@ STEPS = Range(1, 10_000_000, integer=True)  # every, check
 DUMP_EVERY = Range(0, 10_000_000, integer=True)
 NPROCS = Range(1, 4096, integer=True)
 DRIFT = Range(0.0, 1.0, low_open=True, unit="of the initial kinetic energy")
+HALVINGS = Range(0, 6, integer=True)
 # The energy drift above which a result is flagged (analysis/impact/result.py).
 MAX_DRIFT = 0.05
 # rRESPA's split (the outer step, the contact's steps per step) that make bench
@@ -76,5 +77,9 @@ RUN_OPTIONS = (
            "over the initial kinetic energy) exceeds this: its time step is too large (99 % of "
            "the paper study below 4.7e-3 at the default dt; docs/benchmarks/time_vs_error.md)",
            DRIFT, section="run", made_by="always"),
+    Option("barrier_halvings", 2, "times the impact may run again at half the step when a "
+           "triangle crosses the area barrier (--area-floor) within one step, a step too long "
+           "for the barrier's stiffness (0: stop there); the step run is recorded",
+           HALVINGS, section="run", study_cli=False),
 )  # fmt: skip
 RUN = by_name(RUN_OPTIONS)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 from analysis.impact.result import analyse_run, write_json_atomically
@@ -15,7 +16,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
 from ground.provenance import git_revision
 
-from .options import RunOptions
+from .options import DT, RunOptions
 
 RUN_OUTPUTS = (
     "log.lammps",
@@ -26,6 +27,9 @@ RUN_OUTPUTS = (
     "result.json",
     "barrier.dat",
 )
+# decks/area_barrier.lmp's angle style stops the run with this when a triangle
+# turned over between two steps (potentials/angle_area_barrier.cpp)
+BARRIER_CROSSED = "crossed the barrier within one step"
 
 
 def check_folder(folder: Path | str) -> None:
@@ -110,17 +114,35 @@ def run_scene(
     options = options.for_scene(scene_spec(scene))
     options.validate()
 
-    variables = {"scene": str(folder), "out": str(folder)}
-    variables.update(options.deck_variables())
-    variables.update(deck_overrides or {})
     log = folder / "log.lammps"
-    if options.route == "lmp":
-        seconds = run_lmp(variables, log, options.nprocs)
-    else:
-        seconds = run_python(variables, log)
+    halvings = 0
+    while True:
+        variables = {"scene": str(folder), "out": str(folder)}
+        variables.update(options.deck_variables())
+        variables.update(deck_overrides or {})
+        try:
+            if options.route == "lmp":
+                seconds = run_lmp(variables, log, options.nprocs)
+            else:
+                seconds = run_python(variables, log)
+            break
+        except LammpsError as error:
+            # the barrier's energy diverges as a triangle's area vanishes, so a
+            # crossing is a step too long for it, not the body's physics
+            if (
+                BARRIER_CROSSED not in str(error)
+                or halvings == options.barrier_halvings
+                or not DT.contains(options.dt / 2)
+            ):
+                raise
+            halvings += 1
+            options = halved_step(options)
+            for name in RUN_OUTPUTS:
+                (folder / name).unlink(missing_ok=True)
 
     run = {
         "options": options.as_dict(),
+        "dt_halvings": halvings,
         "deck_overrides": deck_overrides or {},
         "wall_seconds": seconds,
         # how the ranks were started: mpirun, IMPACT_MPIRUN's srun, '' for one
@@ -135,6 +157,12 @@ def run_scene(
         raise LammpsError(f"non-finite results ({', '.join(bad)}); no result written")
     write_json_atomically(result, folder / "result.json")
     return result
+
+
+def halved_step(options: RunOptions) -> RunOptions:
+    """``options`` at half the step, with its series' rows and checks at the
+    same times (given in steps, they double)."""
+    return replace(options, dt=options.dt / 2, every=2 * options.every, check=2 * options.check)
 
 
 def scene_spec(scene: dict) -> SceneSpec:

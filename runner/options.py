@@ -13,6 +13,7 @@ from builder.run_options import (  # noqa: F401 (the run's ranges and words, for
     DRIFT,
     DT,
     DUMP_EVERY,
+    HALVINGS,
     INTEGRATORS,
     NPROCS,
     NRESPA,
