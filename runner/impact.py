@@ -49,7 +49,10 @@ def scene_data(folder: Path) -> Path:
 
 
 def run_scene(
-    folder: Path | str, options: RunOptions, deck_overrides: dict[str, str] | None = None
+    folder: Path | str,
+    options: RunOptions,
+    deck_overrides: dict[str, str] | None = None,
+    halvings: int = 0,
 ) -> dict:
     """Run the scene in ``folder`` (scene.data, scene.lmp, scene.json) and analyse it.
 
@@ -67,6 +70,11 @@ def run_scene(
         module), MPI ranks, outputs.
     deck_overrides : dict of str to str, optional
         Further ``-var`` settings of decks/impact.lmp.
+    halvings : int
+        Start at the step halved this many times: a study's worker starts an
+        impact again so after a start at the longer step crossed the area
+        barrier (runner.cluster.tasks; in-process LAMMPS ends the worker on
+        an error). Counts towards ``options.barrier_halvings``.
 
     Returns
     -------
@@ -112,10 +120,11 @@ def run_scene(
     for name in RUN_OUTPUTS:
         (folder / name).unlink(missing_ok=True)
     options = options.for_scene(scene_spec(scene))
+    for _ in range(halvings):
+        options = halved_step(options)
     options.validate()
 
     log = folder / "log.lammps"
-    halvings = 0
     while True:
         variables = {"scene": str(folder), "out": str(folder)}
         variables.update(options.deck_variables())
@@ -129,11 +138,7 @@ def run_scene(
         except LammpsError as error:
             # the barrier's energy diverges as a triangle's area vanishes, so a
             # crossing is a step too long for it, not the body's physics
-            if (
-                BARRIER_CROSSED not in str(error)
-                or halvings == options.barrier_halvings
-                or not DT.contains(options.dt / 2)
-            ):
+            if not may_halve(str(error), halvings, options):
                 raise
             halvings += 1
             options = halved_step(options)
@@ -157,6 +162,16 @@ def run_scene(
         raise LammpsError(f"non-finite results ({', '.join(bad)}); no result written")
     write_json_atomically(result, folder / "result.json")
     return result
+
+
+def may_halve(error: str, halvings: int, options: RunOptions) -> bool:
+    """Whether a run that stopped with ``error`` after ``halvings`` halvings
+    of the step runs again at half its step (``options``: the step run)."""
+    return (
+        BARRIER_CROSSED in error
+        and halvings < options.barrier_halvings
+        and DT.contains(options.dt / 2)
+    )
 
 
 def halved_step(options: RunOptions) -> RunOptions:

@@ -174,6 +174,10 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
     if source is None:
         return {}
     said = json.loads(json.dumps(said))  # tuples as JSON's lists, as recorded
+    # a run option added since the study was first run: the file could not
+    # give it, so it ran as that option's record from before says
+    before = {o.name: o.recorded_before for o in RUN_OPTIONS}
+    source = {**source, "options": {**before, **source.get("options", {})}}
     differ = [key for key in said if said[key] != source.get(key)]
     grows = {
         "samples": said["samples"] >= source.get("samples", 0),

@@ -12,9 +12,12 @@ count of failures, decides what that means, from the impact's folder:
 - result.json or failed.json: the impact is settled; it is not run again
   (Dask also reruns tasks whose results were held by a worker that died);
 - started.json without a result: an earlier attempt ended its worker. If that
-  attempt's log holds a LAMMPS ERROR, the impact failed with that error. If
-  not, the worker was killed from outside (SIGKILL, a walltime, the study
-  stopped) and the impact runs again, up to MAX_ATTEMPTS times.
+  attempt's log holds a LAMMPS ERROR, the impact failed with that error, but
+  for a triangle that crossed the area barrier within one step: the impact
+  runs again at half the step, up to the run's barrier_halvings times
+  (started.json counts them). If not, the worker was killed from outside
+  (SIGKILL, a walltime, the study stopped) and the impact runs again, up to
+  MAX_ATTEMPTS times.
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ from analysis.impact.result import write_json_atomically
 from ground.gate import make_folder
 from ground.launch import lammps_error
 
-from ..impact import run_scene
+from ..impact import halved_step, may_halve, run_scene
 from ..study import Study
 from ..study.folders import STARTED, prune
 
@@ -64,15 +67,18 @@ def fail(job: dict, message: str) -> dict:
     return {**job, "state": state, "error": message}
 
 
-def earlier_attempt(job: dict) -> tuple[int, str]:
-    """How often the impact was started without a result, and the LAMMPS
-    error that ended the last start ('' if none: killed from outside)."""
+def earlier_attempt(job: dict) -> tuple[int, str, int]:
+    """How often the impact was started without a result, the LAMMPS error
+    that ended the last start ('' if none: killed from outside), and the
+    halvings of the step that start ran at."""
     folder = Path(job["folder"])
     try:
-        attempts = json.loads((folder / STARTED).read_text())["attempts"]
+        started = json.loads((folder / STARTED).read_text())
+        attempts = started["attempts"]
     except (OSError, ValueError, KeyError, TypeError):
-        return 0, ""
-    return attempts, lammps_error(folder / "log.lammps", "")
+        return 0, "", 0
+    halvings = started.get("dt_halvings", 0) if isinstance(started, dict) else 0
+    return attempts, lammps_error(folder / "log.lammps", ""), halvings
 
 
 def impact_task(study: Study, job: dict) -> dict:
@@ -87,9 +93,16 @@ def impact_task(study: Study, job: dict) -> dict:
     folder = Path(job["folder"])
     if (folder / "result.json").exists() or (folder / "failed.json").exists():
         return {"folder": job["folder"], "state": "settled"}
-    attempts, error = earlier_attempt(job)
+    attempts, error, halvings = earlier_attempt(job)
     if error:  # the last start ended its worker with this LAMMPS error
-        return fail(job, error)
+        options = study.options.for_scene(study.spec(job))
+        for _ in range(halvings):
+            options = halved_step(options)
+        if not may_halve(error, halvings, options):
+            return fail(job, error)
+        # a step too long for the area barrier: this start runs at half of
+        # it, and counts the starts killed from outside anew
+        halvings, attempts = halvings + 1, 0
     if attempts >= MAX_ATTEMPTS:
         return fail(
             job,
@@ -100,12 +113,17 @@ def impact_task(study: Study, job: dict) -> dict:
     try:
         # marked before building: writing the sample's restart runs LAMMPS too,
         # and an error there ends this process as one in the run does
-        started = {"attempts": attempts + 1, "host": socket.gethostname(), "pid": os.getpid()}
+        started = {
+            "attempts": attempts + 1,
+            "host": socket.gethostname(),
+            "pid": os.getpid(),
+            "dt_halvings": halvings,
+        }
         make_folder(folder)
         write_json_atomically(started, folder / STARTED)
         study.build(job)  # afresh: what an earlier start left goes, but the mark
         built = time.perf_counter()
-        result = run_scene(folder, study.options)
+        result = run_scene(folder, study.options, halvings=halvings)
     except OSError as error:
         if error.errno in DISK_ERRORS:  # the machine's, not the impact's: the study stops
             with contextlib.suppress(OSError):  # not an attempt of the impact's

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import filecmp
 import json
+import shutil
+import subprocess
+import sys
 
 import pytest
 
@@ -12,6 +15,7 @@ from builder.scene import SceneSpec
 from ground.launch import LammpsError
 from runner.impact import BARRIER_CROSSED, run_impact
 from runner.options import RunOptions
+from tests.helpers import ROOT, RUNS
 
 pytestmark = pytest.mark.lammps
 
@@ -50,3 +54,42 @@ def test_the_impact_runs_again_at_half_the_step(tmp_path):
         assert filecmp.cmp(tmp_path / "halved" / name, tmp_path / "direct" / name, shallow=False)
     assert halved["e"] == direct["e"] and halved["beta"] == direct["beta"]
     assert 0.5 < halved["e"] < 1.0
+
+
+def barrier_study(name: str, dt: str) -> dict[str, dict]:
+    """The crossing scene's reading as a two-angle study on one worker (the
+    lammps module in-process, where LAMMPS's error ends the worker): each
+    impact's run.json by its folder's name."""
+    shutil.rmtree(RUNS / name, ignore_errors=True)
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name]
+    command += ["--lattices", "random", "--cot-gamma", "0.167", "1.0", "--samples", "1"]
+    command += ["--n-disk", "800", "--roughness-length", "0.06", "--roughness-profile"]
+    command += ["continuous", "--contact-scaling", "physical", "--area-floor", "0.5"]
+    proc = subprocess.run(
+        [*command, "--dt", dt, "--workers", "1"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "2 impacts, 0 failed" in proc.stdout
+    return {p.parent.name: json.loads(p.read_text()) for p in (RUNS / name).rglob("run.json")}
+
+
+@pytest.mark.slow
+def test_a_study_runs_a_crossing_impact_again_at_half_the_step():
+    """In a study the crossing ends the worker's process; the next start of
+    the impact runs at half the step (started.json counts the halvings), and
+    gives what a study at that step gives, to the last bit."""
+    long = barrier_study("test_barrier_long_step", "0.016")
+    half = barrier_study("test_barrier_half_step", "0.008")
+    assert long["g80.5191"]["dt_halvings"] == 1 and long["g80.5191"]["options"]["dt"] == 0.008
+    assert long["g45.0000"]["dt_halvings"] == 0 and long["g45.0000"]["options"]["dt"] == 0.016
+    assert half["g80.5191"]["dt_halvings"] == 0
+    rebound = {
+        name: json.loads((RUNS / name / "random/s1/g80.5191/result.json").read_text())
+        for name in ("test_barrier_long_step", "test_barrier_half_step")
+    }
+    first, second = rebound.values()
+    assert (first["e"], first["beta"]) == (second["e"], second["beta"])

@@ -16,7 +16,15 @@ import pytest
 
 from runner.cluster.driver import job_groups
 from runner.study import Study
-from tests.helpers import ROOT, RUNS, SMALL, genuine_failures, run_crash_scenario, stop_by_pid
+from tests.helpers import (
+    CRASH_SCENARIO,
+    ROOT,
+    RUNS,
+    SMALL,
+    genuine_failures,
+    run_crash_scenario,
+    stop_by_pid,
+)
 from tests.runner.tiny_study import TINY, study, table
 
 
@@ -59,8 +67,24 @@ def test_a_lammps_error_costs_exactly_its_impact():
     name = "test_study_crashes"
     proc = run_crash_scenario(name)
     assert proc.returncode == 1, proc.stderr
-    genuine_failures(RUNS / name)
+    failed = genuine_failures(RUNS / name)
     assert proc.stdout.strip().splitlines()[-1].startswith("4 impacts, 4 failed")
+    # --retry-failed runs exactly the failed impacts again, each in LAMMPS anew
+    logs = {f: (Path(f) / "log.lammps").stat().st_mtime_ns for f in failed}
+    done = {p: p.stat().st_mtime_ns for p in (RUNS / name).rglob("result.json")}
+    command = [sys.executable, "-m", "runner", "study", "demo", "--name", name]
+    again = subprocess.run(
+        [*command, *CRASH_SCENARIO, "--retry-failed"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    assert again.returncode == 1, again.stderr
+    assert genuine_failures(RUNS / name) == failed
+    for folder in failed:
+        assert (Path(folder) / "log.lammps").stat().st_mtime_ns > logs[folder]
+    assert {p: p.stat().st_mtime_ns for p in (RUNS / name).rglob("result.json")} == done
 
 
 def worker_processes(pid: int) -> list[int]:
