@@ -201,6 +201,18 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     return text
 
 
+def halved_step(rows: list[dict]) -> list[dict]:
+    """The rows run at a shorter step than their level's (reading and N)
+    longest: impacts that a triangle crossing the area barrier made run again
+    at half the step (runner.impact, barrier_halvings)."""
+    longest: dict[tuple, float] = {}
+    for row in rows:
+        if row.get("dt"):
+            key = (row["reading"], row["n_disk"])
+            longest[key] = max(longest.get(key, 0.0), float(row["dt"]))
+    return [r for r in rows if r.get("dt") and float(r["dt"]) < longest[r["reading"], r["n_disk"]]]
+
+
 def render_page(setup, rows, summary, found, shown, too_few, levels, readings, per_n) -> str:
     """The template with the page's numbers; ``per_n`` empty: the tables
     against N only in levels.csv."""
@@ -209,6 +221,7 @@ def render_page(setup, rows, summary, found, shown, too_few, levels, readings, p
         study=setup.study,
         impacts=len(rows),
         failed=len(rows) - len(finished(rows)),
+        halved=len(halved_step(rows)),
         coverage=coverage(summary),
         readings=[{"name": r, "text": reading_text(r)} for r in readings],
         excluded=[
