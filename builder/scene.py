@@ -258,7 +258,8 @@ SCENE_OPTIONS = (
     Option("roughness_profile", None, "sampled: the roughness drawn at the surface's "
            "points, anew at every n_disk; continuous: one profile of correlation length "
            "roughness_length per seed, the same surface at every n_disk (docs/model.md, 'The "
-           "model as the resolution grows'); " + SEE_BODY, words=ROUGHNESS_PROFILES,
+           "model as the resolution grows'); " + SEE_BODY + ", sampled where --roughness-length "
+           "is 0", words=ROUGHNESS_PROFILES,
            applies="wall", made_by="changed", before=PAPER["roughness_profile"], kind=str | None,
            by_target=body_defaults("roughness_profile")),
     Option("contact_scaling", None, "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
@@ -301,7 +302,10 @@ class SceneSpec:
             self.n_wall = 2 * int(self.n_disk)
         for name in BODY:  # None: the body's, by target (BODY_DEFAULTS)
             if getattr(self, name) is None:
-                setattr(self, name, SCENE[name].default_for(self.target))
+                value = SCENE[name].default_for(self.target)
+                if name == "roughness_profile" and self.roughness_length == 0.0:
+                    value = PAPER[name]  # a draw per point has no profile to keep
+                setattr(self, name, value)
         for name in INTEGERS:
             value = getattr(self, name)
             if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
@@ -323,7 +327,9 @@ class SceneSpec:
             raise InputError(
                 "roughness_length applies to evenly spaced surface rows (surface_row even, "
                 "regular_surface band), got surface_row "
-                f"{self.surface_row}, regular_surface {self.regular_surface}"
+                f"{self.surface_row}, regular_surface {self.regular_surface}, roughness_length "
+                f"{self.roughness_length:g} (the default body's is {BODY['roughness_length']:g}; "
+                "0: the paper's draw per point)"
             )
         if not N_WALL.contains(self.wall_points):
             raise InputError(
