@@ -19,7 +19,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_error
 from runner.impact import run_impact, run_scene
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
-from tests.helpers import ROOT, SMALL, new_lammps
+from tests.helpers import PAPER, ROOT, SMALL, new_lammps
 
 
 def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np.ndarray]:
@@ -107,6 +107,7 @@ def head_on(tmp_path_factory):
             gamma_deg=0.0,
             vn=vn,
             roughness=0.0,
+            **PAPER,
             wall_fixed="all",
             n_wall="density",
             contact_mass="point",
@@ -292,7 +293,7 @@ def test_one_and_two_ranks_agree(tmp_path, roughness, gamma, bound, options):
     (docs/benchmarks/validation_table.md), so the bound there is that spread's 1e-2
     (measured: 7e-10); at 45 degrees on the default wall the two runs part
     by 4e-4, within that scene's spread, and are not compared."""
-    scene = build_scene(SceneSpec(gamma_deg=gamma, roughness=roughness))
+    scene = build_scene(SceneSpec(gamma_deg=gamma, roughness=roughness, **PAPER))
     results = [
         run_scene(write_scene(scene, tmp_path / str(n)), dataclasses.replace(options, nprocs=n))
         for n in (1, 2)
