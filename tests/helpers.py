@@ -29,6 +29,9 @@ STYLE_LIBRARY = ROOT / "build" / "libpolyline_exp.so"
 # (builder.scene.PAPER), not the default body's continuous profile and floor.
 SMALL_DISK = dict(n_disk=200, contact_scaling="fixed")
 PAPER = dict(LIMITS["paper"])  # the named reading "paper", the default before issue 46
+# the same on the command line
+PAPER_ARGS = ["--roughness-length", "0", "--roughness-profile", "sampled"]
+PAPER_ARGS += ["--contact-scaling", "spacing", "--area-floor", "0"]
 SMALL = dict(SMALL_DISK, n_wall=1600, **{k: v for k, v in PAPER.items() if k != "contact_scaling"})
 
 

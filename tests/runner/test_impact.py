@@ -19,7 +19,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_error
 from runner.impact import run_impact, run_scene
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
-from tests.helpers import PAPER, ROOT, SMALL, new_lammps
+from tests.helpers import PAPER, PAPER_ARGS, ROOT, SMALL, new_lammps
 
 
 def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np.ndarray]:
@@ -309,8 +309,18 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     it, it stays silent. (The default 0.05 sits above the drift of the paper
     study's worst impacts at the default dt, docs/benchmarks/drift_tail.md.)"""
     out = tmp_path / "coarse"
+    # the paper's scene, whose drifts the guard was set by
     proc = runner_cli(
-        "impact", "--gamma", "60", "--seed", "3", "--max-drift", "1e-5", "--out", str(out)
+        "impact",
+        "--gamma",
+        "60",
+        "--seed",
+        "3",
+        *PAPER_ARGS,
+        "--max-drift",
+        "1e-5",
+        "--out",
+        str(out),
     )
     assert proc.returncode == 0, proc.stderr
     warning = proc.stderr.strip().splitlines()
@@ -331,12 +341,26 @@ def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
     stability of the springs: the run stops at a check, writes no result,
     and the error names dt and the default."""
     out = tmp_path / "unstable"
+    # the paper's scene: its springs blow up (the default body's barrier stops
+    # the run first, below)
+    proc = runner_cli(
+        "impact", "--gamma", "60", "--seed", "3", *PAPER_ARGS, "--dt", "0.05", "--check", "40",
+        "--out", str(out),
+    )  # fmt: skip
+    assert proc.returncode == 1
+    error = proc.stderr.strip().splitlines()
+    assert len(error) == 1 and "the run went unstable" in error[0]
+    assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
+    assert not (out / "result.json").exists()
+    # the default body: a triangle crosses the barrier within one step, and
+    # the error names dt and the default too
+    out = tmp_path / "unstable_body"
     proc = runner_cli(
         "impact", "--gamma", "60", "--seed", "3", "--dt", "0.05", "--check", "40", "--out", str(out)
     )
     assert proc.returncode == 1
     error = proc.stderr.strip().splitlines()
-    assert len(error) == 1 and "the run went unstable" in error[0]
+    assert len(error) == 1 and "crossed the barrier within one step" in error[0]
     assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
     assert not (out / "result.json").exists()
 
