@@ -34,7 +34,7 @@ from bench.common import (
 )
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from ground.launch import LammpsError, command_line
 from runner.impact import run_scene
 from runner.options import RunOptions
@@ -90,7 +90,7 @@ def restitution_table(tmp: Path, seeds: int) -> str:
     for vn in (0.1, 0.01):
         for seed in range(1, seeds + 1):
             for gamma in ANGLES:
-                scene = build_scene(SceneSpec(seed=seed, gamma_deg=gamma, vn=vn))
+                scene = build_scene(SceneSpec(seed=seed, gamma_deg=gamma, vn=vn, **PAPER))
                 cells = []
                 for contact in ("segment", "pair"):
                     folder = write_scene(scene, tmp / f"{vn}_{seed}_{gamma}_{contact}")
@@ -134,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        scene = write_scene(build_scene(SceneSpec(gamma_deg=45.0)), tmp / "scene")
+        scene = write_scene(build_scene(SceneSpec(gamma_deg=45.0, **PAPER)), tmp / "scene")
         costs = cost_table(scene, args.repeats, args.steps)
         restitution = restitution_table(tmp, args.seeds)
     body = (

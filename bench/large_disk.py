@@ -46,7 +46,7 @@ from bench.common import (
 )
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import N_WALL, Scene, SceneSpec
+from builder.scene import N_WALL, PAPER, Scene, SceneSpec
 from ground.checks import Range
 from ground.errors import InputError
 from ground.launch import run_lmp
@@ -134,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
         roughness=roughness,
         contact_a=contact_a,
         n_wall=1600,
-        contact_scaling="fixed",
+        **{**PAPER, "contact_scaling": "fixed"},
     )
     try:
         distinct("--ranks", args.ranks)

@@ -49,7 +49,7 @@ from bench.common import (
 from bench.resolution_cost import SIZE, spec_at
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from ground.checks import Range
 from ground.launch import command_line, run_python
 from runner.options import RunOptions
@@ -137,7 +137,7 @@ def measure(n_disk: int, args) -> tuple[dict[str, list[float]], dict[str, list[f
     and the largest difference of the floor's positions from LAMMPS's."""
     folder = RUNS / "loop_floor" / f"n{n_disk}"
     if n_disk == 800:  # the paper's default reading, as before
-        spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
+        spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed, **PAPER)
         options = load_study("paper").options
     else:
         spec = spec_at(n_disk, args.gamma, args.seed)

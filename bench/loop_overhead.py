@@ -50,7 +50,7 @@ from bench.common import (
 )
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from ground.launch import command_line
 from runner.impact import run_scene
 from runner.options import DT, NRESPA
@@ -197,7 +197,7 @@ def parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
 
-    spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed)
+    spec = SceneSpec(gamma_deg=args.gamma, seed=args.seed, **PAPER)
     scene = build_scene(spec)
     with tempfile.TemporaryDirectory() as tmp:
         folder = write_scene(scene, Path(tmp) / "scene", load_study("paper").options.springs)

@@ -49,7 +49,7 @@ from bench.common import (
     refuse,
     write_report,
 )
-from builder.scene import N_DISK, N_WALL, SceneSpec
+from builder.scene import N_DISK, N_WALL, PAPER, SceneSpec
 from ground.checks import Range
 from ground.errors import InputError
 from ground.launch import LammpsError
@@ -72,7 +72,9 @@ def scaled_settings(n_disk: int) -> tuple[float, float, int]:
 
 
 def spec_at(n_disk: int, gamma: float, seed: int) -> SceneSpec:
-    return SceneSpec(seed=seed, gamma_deg=gamma, n_disk=n_disk, roughness_length=ROUGHNESS_LENGTH)
+    return SceneSpec(
+        seed=seed, gamma_deg=gamma, n_disk=n_disk, **{**PAPER, "roughness_length": ROUGHNESS_LENGTH}
+    )
 
 
 def build(spec: SceneSpec, folder: Path, cache: Path) -> tuple[float, float, float]:

@@ -43,7 +43,7 @@ from scipy.spatial import Delaunay
 from scipy.stats import spearmanr
 
 from bench.common import RUNS, bench_parser, paired_steps, refuse
-from builder.scene import N_DISK, SceneSpec
+from builder.scene import N_DISK, PAPER, SceneSpec
 from ground.checks import OutFolder, Range
 from ground.errors import InputError
 from ground.launch import LammpsError
@@ -446,7 +446,7 @@ def main(argv: list[str] | None = None) -> int:
         for seed in range(1, args.seeds + 1):
             if (args.reading, n, seed) in done:
                 continue
-            spec = SceneSpec(n_disk=n, seed=seed, **fields)
+            spec = SceneSpec(n_disk=n, seed=seed, **{**PAPER, **fields})
             options = RunOptions().for_scene(spec)
             check = options.check_steps
             divisors = [k for k in range(1, check + 1) if check % k == 0]

@@ -26,7 +26,7 @@ from bench.common import (
 )
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from runner.impact import run_scene
 from runner.options import RunOptions
 
@@ -68,7 +68,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    scene = build_scene(SceneSpec(gamma_deg=45.0))
+    scene = build_scene(SceneSpec(gamma_deg=45.0, **PAPER))
     times = {name: [] for name in SETTINGS}
     with tempfile.TemporaryDirectory() as tmp:
         folder = write_scene(scene, Path(tmp) / "scene")

@@ -40,7 +40,7 @@ from bench.common import (
 )
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from ground.errors import InputError
 from ground.launch import command_line
 
@@ -137,7 +137,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for k, (label, wall) in enumerate(SCENES.items()):
-            scene = build_scene(SceneSpec(gamma_deg=30.0, seed=1, **wall))
+            scene = build_scene(SceneSpec(gamma_deg=30.0, seed=1, **wall, **PAPER))
             folders = {
                 springs: write_scene(scene, Path(tmp) / f"{k}_{springs[:6]}", springs)
                 for springs in STYLES

@@ -28,7 +28,7 @@ from bench.common import bench_parser, markdown_table, write_report
 from builder.assembly import build_scene
 from builder.lammps_data import read_data, write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import MAX_TANGENTIAL_SPEED, SceneSpec
+from builder.scene import MAX_TANGENTIAL_SPEED, PAPER, SceneSpec
 from ground.launch import LammpsError
 from runner.impact import run_scene
 from runner.options import DEFAULT_DT, RESPA_NRESPA, RunOptions
@@ -46,7 +46,7 @@ CASES = [
 
 def spec_for(lattice: str, gamma: float, vn: float) -> SceneSpec:
     extra = {"k2_over_k1": square_ratio_for_poisson(0.3)} if lattice == "square" else {}
-    return SceneSpec(lattice=lattice, gamma_deg=gamma, vn=vn, **extra)
+    return SceneSpec(lattice=lattice, gamma_deg=gamma, vn=vn, **extra, **PAPER)
 
 
 def sweep(tmp: Path) -> list[list[str]]:
@@ -100,7 +100,7 @@ def speed_limits(tmp: Path) -> list[list[str]]:
         for vn in SPEEDS:
             drifts, failures = [], []
             for seed in SPEED_SEEDS:
-                spec = SceneSpec(gamma_deg=gamma, vn=vn, seed=seed)
+                spec = SceneSpec(gamma_deg=gamma, vn=vn, seed=seed, **PAPER)
                 folder = write_scene(build_scene(spec), tmp / f"speed_{gamma}_{vn}_{seed}")
                 try:
                     drifts.append(abs(run_scene(folder, options)["energy_drift"]))
@@ -137,7 +137,7 @@ def spring_strain(folder: Path) -> float:
 
 
 def long_run(tmp: Path, dt: float) -> list[str]:
-    folder = write_scene(build_scene(SceneSpec(gamma_deg=80.5)), tmp / "long")
+    folder = write_scene(build_scene(SceneSpec(gamma_deg=80.5, **PAPER)), tmp / "long")
     # early_stop no: the deck runs on to tmax after the disk has left
     # one frame per check: the strain is read from the last
     options = RunOptions(dt=dt, rule="gradient", tmax=400.0)

@@ -27,7 +27,7 @@ import tempfile
 from pathlib import Path
 
 from bench.common import bench_parser, distinct, loop_seconds, markdown_table, refuse, write_report
-from builder.scene import N_DISK, SceneSpec
+from builder.scene import N_DISK, PAPER, SceneSpec
 from ground.errors import InputError
 from ground.launch import LammpsError
 from runner.impact import run_impact
@@ -46,6 +46,7 @@ def spec(n_disk: int, gamma: float, rough: bool) -> SceneSpec:
         seed=1,
         roughness=0.03 if rough else 0.0,
         roughness_length=ROUGHNESS_LENGTH if rough else 0.0,
+        **{k: v for k, v in PAPER.items() if k != "roughness_length"},
     )
 
 

@@ -26,7 +26,7 @@ from bench.common import SEED_COUNT, bench_parser, markdown_table, median, write
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 from ground.checks import Range
 from runner.impact import run_scene
 from runner.options import DEFAULT_DT, RunOptions
@@ -108,7 +108,7 @@ def main(argv: list[str] | None = None) -> int:
             for seed in range(1, args.seeds + 1):
                 for gamma in ANGLES:
                     scene = build_scene(
-                        SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra)
+                        SceneSpec(lattice=lattice, seed=seed, gamma_deg=gamma, **extra, **PAPER)
                     )
                     tag = f"{lattice}{extra.get('k2_over_k1', '')}_{seed}_{gamma}"
                     stopped = run_scene(

@@ -13,7 +13,7 @@ import numpy as np
 from bench.common import bench_parser, distinct, page_folder, refuse, write_report
 from builder.bodies import Body
 from builder.sample import build_bodies
-from builder.scene import N_DISK, SceneSpec
+from builder.scene import N_DISK, PAPER, SceneSpec
 from ground.checks import Range
 from ground.errors import InputError
 
@@ -61,7 +61,7 @@ def table(n_disks: list[int], seeds: int) -> str:
         for n in n_disks:
             disk, wall = [], []
             for seed in range(1, seeds + 1):
-                bodies = build_bodies(SceneSpec(n_disk=n, seed=seed, **options))
+                bodies = build_bodies(SceneSpec(n_disk=n, seed=seed, **{**PAPER, **options}))
                 disk.append(disk_slopes(bodies[0]))
                 wall.append(wall_slopes(bodies[1]))
             rms = [np.sqrt(np.mean(np.concatenate(x) ** 2)) for x in (disk, wall)]

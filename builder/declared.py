@@ -127,6 +127,9 @@ class Option:
         default ``default``.
     flag : str
         The command line's option; default ``--`` + name with dashes.
+    by_target : tuple
+        The default by target, (target, value) pairs, where it is the body's
+        (``default`` None: the scene takes the value of its target).
     """
 
     name: str
@@ -145,6 +148,7 @@ class Option:
     made_by: str = ""
     before: Any = UNSET
     flag: str = ""
+    by_target: tuple = ()
 
     @property
     def option(self) -> str:
@@ -160,6 +164,11 @@ class Option:
     def annotation(self) -> Any:
         kind = self.kind or type(self.default)
         return kind
+
+    def default_for(self, target: str) -> Any:
+        """The default of a scene whose target is ``target`` (``by_target``'s
+        value, else ``default``)."""
+        return dict(self.by_target).get(target, self.default)
 
     @property
     def recorded_before(self) -> Any:
@@ -199,6 +208,10 @@ class Option:
         tail = f" (default: {shown:g})" if isinstance(shown, float) else f" (default: {shown})"
         if shown is None:
             tail = ""
+        if self.by_target:
+            words = [f"{v:g}" if isinstance(v, float) else str(v) for _, v in self.by_target]
+            pairs = (f"{v} with --target {t}" for v, (t, _) in zip(words, self.by_target))
+            tail = f" (default: {', '.join(pairs)})"
         help_text = f"{self.help}{said}{tail}".replace("%", "%%")
         group.add_argument(
             self.option, dest=self.name, default=default, help=help_text, **typed, **extra
@@ -230,7 +243,7 @@ class Option:
         if self.applies and self.applies != target:
             return ""
         value = record.get(self.name, self.recorded_before)
-        if self.made_by == "changed" and value in (self.default, None):
+        if self.made_by == "changed" and value in (self.default_for(target), None):
             return ""
         if value is None:
             return ""

@@ -138,6 +138,43 @@ def speed_warning(vn: float, gamma_deg: float) -> str | None:
     )
 
 
+# How the body is carried to finer disks, four options (docs/model.md, "The
+# model as the resolution grows"). By default a disk of any N hitting the wall
+# is one body refined, a reading whose limit exists: one continuous surface
+# per seed of correlation length 0.2 R, the contact's lengths fixed in R, and
+# the barrier against triangles turning inside out (builder.study_names'
+# "profile-floor"). The paper's scene, a draw per surface point and the
+# contact following the spacing, is the named reading "paper"; a binary scene
+# (target disk) refuses the continuous profile, the barrier and the physical
+# contact, and keeps the paper's.
+BODY = {
+    "roughness_length": 0.2,
+    "roughness_profile": "continuous",
+    "contact_scaling": "physical",
+    "area_floor": 0.5,
+}
+PAPER = {
+    "roughness_length": 0.0,
+    "roughness_profile": "sampled",
+    "contact_scaling": "spacing",
+    "area_floor": 0.0,
+}
+BODY_DEFAULTS = {"wall": BODY, "disk": PAPER}
+WHY_BODY = (
+    "with --roughness-profile, --contact-scaling and --area-floor it carries the body to finer "
+    "disks: by default, at --target wall, one body refined, whose limit as n_disk grows exists "
+    "(0.2, continuous, physical, 0.5: the reading profile-floor); the paper's scene, a draw per "
+    "surface point, is 0, sampled, spacing, 0 (the reading paper: a study file's [scene] "
+    'limit = "paper"), --target disk\'s default'
+)
+SEE_BODY = "the default is the body's (see --roughness-length)"
+
+
+def body_defaults(name: str) -> tuple:
+    """An option's default by target, ``Option.by_target``."""
+    return tuple((target, values[name]) for target, values in BODY_DEFAULTS.items())
+
+
 # Molecule IDs tell the bodies apart and which wall points are held fixed.
 DISK, WALL_FREE, WALL_HELD = 1, 2, 3
 
@@ -213,25 +250,30 @@ SCENE_OPTIONS = (
     *(Option(name, default, meaning, words=MODEL_READINGS[name], made_by="always",
              before=MODEL_READINGS[name][0])
       for name, default, meaning in MODEL_OPTIONS),
-    Option("roughness_length", 0.0, "the roughness's correlation length along the surface, 0 "
+    Option("roughness_length", None, "the roughness's correlation length along the surface, 0 "
            "(each point drawn on its own, the paper) or a length (docs/model.md, 'The model as "
-           "the resolution grows')", ROUGHNESS_LENGTH, (0.0, 0), hide_words=True,
-           made_by="changed"),
-    Option("roughness_profile", "sampled", "sampled: the roughness drawn at the surface's "
+           "the resolution grows'); " + WHY_BODY, ROUGHNESS_LENGTH, (0.0, 0), hide_words=True,
+           made_by="changed", before=PAPER["roughness_length"], kind=float | None,
+           by_target=body_defaults("roughness_length")),
+    Option("roughness_profile", None, "sampled: the roughness drawn at the surface's "
            "points, anew at every n_disk; continuous: one profile of correlation length "
            "roughness_length per seed, the same surface at every n_disk (docs/model.md, 'The "
-           "model as the resolution grows')", words=ROUGHNESS_PROFILES, applies="wall",
-           made_by="changed"),
-    Option("contact_scaling", "spacing", "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
+           "model as the resolution grows'); " + SEE_BODY + ", sampled where --roughness-length "
+           "is 0", words=ROUGHNESS_PROFILES,
+           applies="wall", made_by="changed", before=PAPER["roughness_profile"], kind=str | None,
+           by_target=body_defaults("roughness_profile")),
+    Option("contact_scaling", None, "spacing: a R = contact_a sqrt(n_disk / 800) and V0 "
            "times sqrt(800 / n_disk), the contact's energy per length of surface held; fixed: a "
            "and V0 as at 800 points, the paper's; physical: a and the cutoff as at 800 points, "
            "the pressure over the modulus held (docs/model.md, 'The model as the resolution "
-           "grows')",
-           words=CONTACT_SCALINGS, made_by="changed"),
-    Option("area_floor", 0.0, "J_c of a barrier against the bodies' triangles turning inside "
+           "grows'); " + SEE_BODY, words=CONTACT_SCALINGS, made_by="changed",
+           before=PAPER["contact_scaling"], kind=str | None,
+           by_target=body_defaults("contact_scaling")),
+    Option("area_floor", None, "J_c of a barrier against the bodies' triangles turning inside "
            "out: an energy on each triangle whose area falls below J_c times its area at rest, "
            "diverging as the area vanishes (docs/rough_contact.md); 0: no barrier, the springs "
-           "alone", AREA_FLOOR, applies="wall", made_by="changed"),
+           "alone; " + SEE_BODY, AREA_FLOOR, applies="wall", made_by="changed",
+           before=PAPER["area_floor"], kind=float | None, by_target=body_defaults("area_floor")),
     Option("k2_over_k1", 3.0 / 7.0, "square lattice only: diagonal over nearest spring "
            "constant", K2_OVER_K1, study=False),
     Option("kb_over_ka", 1e-3, "bond over spring constant", KB_OVER_KA, study=False, cli=False),
@@ -258,6 +300,12 @@ class SceneSpec:
     def __post_init__(self) -> None:
         if self.n_wall is None and isinstance(self.n_disk, (int, np.integer)):
             self.n_wall = 2 * int(self.n_disk)
+        for name in BODY:  # None: the body's, by target (BODY_DEFAULTS)
+            if getattr(self, name) is None:
+                value = SCENE[name].default_for(self.target)
+                if name == "roughness_profile" and self.roughness_length == 0.0:
+                    value = PAPER[name]  # a draw per point has no profile to keep
+                setattr(self, name, value)
         for name in INTEGERS:
             value = getattr(self, name)
             if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
@@ -279,7 +327,9 @@ class SceneSpec:
             raise InputError(
                 "roughness_length applies to evenly spaced surface rows (surface_row even, "
                 "regular_surface band), got surface_row "
-                f"{self.surface_row}, regular_surface {self.regular_surface}"
+                f"{self.surface_row}, regular_surface {self.regular_surface}, roughness_length "
+                f"{self.roughness_length:g} (the default body's is {BODY['roughness_length']:g}; "
+                "0: the paper's draw per point)"
             )
         if not N_WALL.contains(self.wall_points):
             raise InputError(
@@ -308,7 +358,7 @@ class SceneSpec:
                 )
         applies = {o.name: o.applies for o in SCENE_OPTIONS if o.applies}
         for name, target in applies.items():  # another target's option is refused, not ignored
-            default = 2 * self.n_disk if name == "n_wall" else SCENE[name].default
+            default = 2 * self.n_disk if name == "n_wall" else SCENE[name].default_for(self.target)
             if target != self.target and getattr(self, name) != default:
                 raise InputError(
                     f"{name} applies to target disk (a second disk), got target wall"

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import itertools
 
-from .scene import FIRST_READING
+from .scene import FIRST_READING, PAPER
 
 # The kinds of page a study file may ask for (its ``kind``): ``results`` (the
 # default), or a readings study's page made from its table (analysis.kinds).
@@ -74,16 +74,20 @@ MODELS = {name: {**FIRST_READING, **change} for name, change in MODEL_CHANGES.it
 # slope, roughness / length, of independent draws 2 pi / 93 R apart, the
 # 800-point disk's surface spacing, sqrt(2) roughness / spacing) and the
 # contact's scaling; "continuum" changes neither with the spacing, the other
-# two take the paper's per-point reading of one of them.
+# two take the paper's per-point reading of one of them. Each names all four
+# options that carry the body to finer disks (builder.scene.BODY), as the
+# default is no longer the paper's: "paper" is the paper's scene, a draw per
+# surface point and the contact following the spacing; "profile-floor" is
+# today's default at target wall.
 ROUGHNESS_LENGTH = 0.048
 # The continuous surface's correlation length: 0.2 R, whose roughness a rough
 # contact resolves near 25,600 points (docs/model.md).
 PROFILE_LENGTH = 0.2
 PAPER_SLOPE_LENGTH = 0.06
 LIMITS = {
-    "continuum": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "spacing"},
-    "point-roughness": {"roughness_length": 0.0, "contact_scaling": "spacing"},
-    "fixed-contact": {"roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
+    "continuum": {**PAPER, "roughness_length": ROUGHNESS_LENGTH},
+    "point-roughness": dict(PAPER),
+    "fixed-contact": {**PAPER, "roughness_length": ROUGHNESS_LENGTH, "contact_scaling": "fixed"},
     # Every length physical (issue 46): one continuous surface per seed, the
     # same at every resolution (builder/profile.py), of correlation length
     # PROFILE_LENGTH, and the contact's lengths fixed in R; "smooth" is its
@@ -93,8 +97,17 @@ LIMITS = {
         "roughness_length": PROFILE_LENGTH,
         "roughness_profile": "continuous",
         "contact_scaling": "physical",
+        "area_floor": 0.0,
     },
-    "smooth": {"roughness": 0.0, "contact_scaling": "physical"},
+    # (its surface options profile's, as resolution_profile ran it after
+    # profile: without roughness they change nothing)
+    "smooth": {
+        "roughness": 0.0,
+        "roughness_length": PROFILE_LENGTH,
+        "roughness_profile": "continuous",
+        "contact_scaling": "physical",
+        "area_floor": 0.0,
+    },
     # the profile with a barrier against the triangles turning inside out
     # (area_floor 0.5: docs/rough_contact.md, "The barrier"): the lattice's
     # artefact removed, the small-strain moduli unchanged
@@ -124,17 +137,21 @@ LIMITS = {
         "roughness_length": PAPER_SLOPE_LENGTH,
         "roughness_profile": "continuous",
         "contact_scaling": "physical",
+        "area_floor": 0.0,
     },
+    # the paper's scene (builder.scene.PAPER): the default before issue 46,
+    # which the studies of the paper's scene pin
+    "paper": dict(PAPER),
 }
 # What the disk hits in the symmetric references (analysis/kinds/references.py):
 # a second disk, its own image, that image held, a wall built like a disk's
-# surface, the default wall.
+# surface, the paper's wall (the paper's body: a binary scene's default).
 REFERENCES = {
     "pair": {"target": "disk", "partner": "independent"},
     "image": {"target": "disk", "partner": "image"},
     "image-held": {"target": "disk", "partner": "image-held"},
     "surface": {"target": "disk", "partner": "surface"},
-    "wall": {"target": "wall", "partner": "independent"},
+    "wall": {"target": "wall", "partner": "independent", **PAPER},
 }
 # The references that meet one disk, not a pair: run at half the pair's speed
 # (analysis/kinds/references.py); here, so that the kind and its page share them.

@@ -29,7 +29,7 @@ from analysis.impact.series import read_series
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.materials import square_ratio_for_poisson
-from builder.scene import SceneSpec
+from builder.scene import PAPER, SceneSpec
 
 from .run import ReferenceOptions, run_reference
 
@@ -45,10 +45,11 @@ BINARY = {"random_disk_g45": {"lattice": "random", "gamma_deg": 45.0, "target": 
 def scenes(
     n_disk: int = 800, roughness: float = 0.03, two_disks: bool = True
 ) -> dict[str, SceneSpec]:
-    """The nine scenes of the disks on the wall, and (``two_disks``) one of two disks."""
+    """The nine scenes of the disks on the wall, and (``two_disks``) one of two disks:
+    the paper's scene (builder.scene.PAPER; a binary scene's default), as validated."""
     on_the_wall = {
         f"{lattice}_g{gamma:g}": SceneSpec(
-            lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra
+            lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra, **PAPER
         )
         for lattice, extra in LATTICES.items()
         for gamma in ANGLES

@@ -12,6 +12,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from builder.study_names import LIMITS
 from ground.paths import ROOT
 
 # The tests' studies and runs go into a temporary folder of their own, never
@@ -24,9 +25,14 @@ STYLE_LIBRARY = ROOT / "build" / "libpolyline_exp.so"
 # The 200-point disk on the paper's 1,600-point wall with the paper's contact,
 # a R = 300 (the defaults follow the disk's resolution: a 400-point wall, a R
 # 150), the scenes the tests were written on; SMALL_DISK for a binary scene,
-# which has no wall.
+# which has no wall. The paper's roughness, a draw per point and no barrier
+# (builder.scene.PAPER), not the default body's continuous profile and floor.
 SMALL_DISK = dict(n_disk=200, contact_scaling="fixed")
-SMALL = dict(SMALL_DISK, n_wall=1600)
+PAPER = dict(LIMITS["paper"])  # the named reading "paper", the default before issue 46
+# the same on the command line
+PAPER_ARGS = ["--roughness-length", "0", "--roughness-profile", "sampled"]
+PAPER_ARGS += ["--contact-scaling", "spacing", "--area-floor", "0"]
+SMALL = dict(SMALL_DISK, n_wall=1600, **{k: v for k, v in PAPER.items() if k != "contact_scaling"})
 
 
 def new_lammps(*args: str):

@@ -1,11 +1,11 @@
-"""Reference logs of the default impact, as LAMMPS's examples ship them.
+"""Reference logs of the paper's impact, as LAMMPS's examples ship them.
 
 ``decks/log.<date>.impact.g++.1`` and ``.2`` are LAMMPS's logs of
-decks/impact.lmp on the default scene at 30 degrees, seed 1 (what
-``python -m runner impact --gamma 30`` runs), with one and two MPI ranks and a
-thermo row every 20 steps (0.16 R/c at the default step). ``make reference-logs`` (``main``)
-writes them anew, replacing the old ones: run it, and commit the result,
-whenever the default scene or the deck changes. tests/runner/test_reference_logs.py
+decks/impact.lmp on the paper's scene at 30 degrees, seed 1 (``python -m
+runner impact`` with SCENE_ARGS), with one and two MPI ranks and a thermo
+row every 20 steps (0.16 R/c at the default step). ``make reference-logs``
+(``main``) writes them anew, replacing the old ones: run it, and commit the result,
+whenever the paper's scene or the deck changes. tests/runner/test_reference_logs.py
 checks a fresh run against them.
 """
 
@@ -24,7 +24,11 @@ from tests.helpers import ROOT
 
 DECKS = ROOT / "decks"
 NAME = "impact"
-SCENE_ARGS = ["--gamma", "30", "--seed", "1"]  # every other option at its default
+# the paper's scene (builder.scene.PAPER, the reading "paper"), every other
+# option at its default: the logs were made on it before the default became
+# the refined body (issue 46)
+SCENE_ARGS = ["--gamma", "30", "--seed", "1", "--roughness-length", "0", "--roughness-profile",
+              "sampled", "--contact-scaling", "spacing", "--area-floor", "0"]  # fmt: skip
 THERMO_EVERY = 20
 # Relative to the project's root (the deck's working directory), so that the
 # logs name no machine's temporary folder.
@@ -32,7 +36,7 @@ SCENE = Path("runs") / "reference-logs" / "scene"
 
 
 def build_scene(folder: Path = SCENE) -> Path:
-    """Write the default scene (``python -m builder scene`` with SCENE_ARGS)
+    """Write the paper's scene (``python -m builder scene`` with SCENE_ARGS)
     into ``folder``, relative to the project's root.
 
     Parameters

@@ -48,7 +48,9 @@ def unstable_hint(error: Exception, args) -> str:
             f" ({vn}dt = {args.dt:g} R/c: the contact was not resolved; try a smaller --dt"
             f"{' or --vn' if vn else ''}; docs/benchmarks/stability_speeds.md)"
         )
-    if "unstable" not in text:
+    # the springs' blow-up, or (with --area-floor) a triangle that crossed the
+    # barrier within one step: both a step too long for the scene
+    if "unstable" not in text and "crossed the barrier within one step" not in text:
         return ""
     return (
         f" (dt = {args.dt:g} R/c; the default, {default:g}, is the largest step found "

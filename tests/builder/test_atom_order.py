@@ -48,7 +48,7 @@ def as_sets(scene):
 
 @pytest.fixture(scope="module")
 def both_orders():
-    spec = SceneSpec(gamma_deg=30.0, roughness=0.0, area_floor=0.5, **SMALL)
+    spec = SceneSpec(**{**SMALL, "gamma_deg": 30.0, "roughness": 0.0, "area_floor": 0.5})
     sampled = build_scene(spec)
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(assembly, "SAMPLE_ORDER_UP_TO", 0)

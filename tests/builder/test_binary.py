@@ -14,6 +14,7 @@ from analysis.impact.series import BINARY_COLUMNS
 from builder.assembly import build_scene
 from builder.binary import SURFACE_RADIUS, counter_clockwise
 from builder.scene import DISK, SceneSpec
+from builder.study_names import LIMITS
 from ground.errors import InputError
 from runner.impact import run_impact
 from runner.options import RESPA_DT, RESPA_NRESPA, RunOptions
@@ -132,7 +133,7 @@ def test_where_no_line_first_touches_at_gamma_the_pair_is_turned():
 
 
 def test_the_disk_is_the_wall_scenes_and_the_second_disk_another():
-    wall = build_scene(SceneSpec(n_disk=200, seed=4))
+    wall = build_scene(SceneSpec(n_disk=200, seed=4, **LIMITS["paper"]))  # a binary's reading
     binary = build_scene(SceneSpec(**{**BINARY, "seed": 4}))
     own = binary.frame_positions[binary.molecule == DISK]
     assert np.array_equal(own, wall.frame_positions[wall.molecule == DISK])

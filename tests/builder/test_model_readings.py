@@ -17,6 +17,7 @@ from builder.assembly import build_scene
 from builder.cli import MODEL_OPTIONS
 from builder.materials import square_ratio_for_poisson
 from builder.scene import DISK, FIRST_READING, MODEL_READINGS, SceneSpec
+from builder.study_names import LIMITS
 from ground.errors import InputError
 from runner.__main__ import main as runner_main
 from runner.study import Study
@@ -181,7 +182,9 @@ def test_readings_that_do_not_apply_are_refused():
     with pytest.raises(InputError, match="regular_surface lattice applies to the triangular"):
         SceneSpec(regular_surface="lattice").validate()
     with pytest.raises(InputError, match="surface_row random places a surface row"):
-        SceneSpec(lattice="square", regular_surface="lattice", surface_row="random").validate()
+        SceneSpec(
+            lattice="square", regular_surface="lattice", surface_row="random", **LIMITS["paper"]
+        ).validate()
     with pytest.raises(InputError, match="--regular-surface lattice applies to"):
         Study("x", lattices=("random",), regular_surface="lattice").validate()
 
@@ -199,8 +202,9 @@ def test_a_study_gives_each_lattice_the_readings_that_apply():
     assert (random.surface_row, random.regular_surface) == ("random", "band")
     assert (triangular.surface_row, triangular.regular_surface) == ("even", "lattice")
     assert random.contact_mass == triangular.contact_mass == "disk"
+    # the paper study pins the paper's scene (the named reading "paper")
     assert load_study("paper").spec({"lattice": "random", "seed": 1, "gamma": 30.0}) == SceneSpec(
-        seed=1, gamma_deg=30.0
+        seed=1, gamma_deg=30.0, **LIMITS["paper"]
     )
 
 

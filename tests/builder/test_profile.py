@@ -8,6 +8,7 @@ import pytest
 from builder import bodies, profile
 from builder.sample import build_bodies
 from builder.scene import PAPER_CUTOFF, SceneSpec, contact_energy
+from builder.study_names import LIMITS
 from ground.errors import InputError
 
 LENGTH = 0.2
@@ -19,6 +20,7 @@ def spec(n_disk: int, seed: int = 3, **options) -> SceneSpec:
         "roughness_length": LENGTH,
         "roughness_profile": "continuous",
         "contact_scaling": "physical",
+        "area_floor": 0.0,
         **options,
     }
     return SceneSpec(n_disk=n_disk, seed=seed, **options)
@@ -123,7 +125,7 @@ def test_the_physical_contact_keeps_its_lengths_and_its_pressure_over_the_modulu
     assert PAPER_CUTOFF == pytest.approx(SceneSpec().wall_spacing, rel=1e-12)
     pressure = lambda s: contact_energy(s, s.n_disk) / s.resolution_scale  # noqa: E731
     assert pressure(fine) / pressure(base) == pytest.approx(12800 / 800)
-    assert contact_energy(base, 800) == contact_energy(SceneSpec(), 800)
+    assert contact_energy(base, 800) == contact_energy(SceneSpec(**LIMITS["paper"]), 800)
 
 
 def test_a_continuous_profile_needs_a_length():

@@ -6,6 +6,9 @@ import pytest
 from builder import profile
 from builder.sample import build_bodies
 from builder.scene import SceneSpec
+from builder.study_names import LIMITS
+
+PAPER = LIMITS["paper"]  # the paper's draw per point, the default before issue 46
 
 
 def covariance(n: int, spacing: float, length: float) -> np.ndarray:
@@ -46,8 +49,8 @@ def test_slopes_follow_the_length_not_the_spacing():
 
 def test_a_correlated_disk_filters_the_seeds_own_draw():
     # the profile is the seed's draw per point, filtered: the same white noise
-    disk = build_bodies(SceneSpec(seed=4))[0]
-    smooth = build_bodies(SceneSpec(seed=4, roughness_length=0.048))[0]
+    disk = build_bodies(SceneSpec(seed=4, **PAPER))[0]  # the paper's draw per point
+    smooth = build_bodies(SceneSpec(seed=4, **{**PAPER, "roughness_length": 0.048}))[0]
     radial = np.hypot(*disk.points[disk.surface].T) - 1.0
     heights = np.hypot(*smooth.points[smooth.surface].T) - 1.0
     arc = 2 * np.pi / len(radial)

@@ -97,7 +97,7 @@ PHRASES = {
         "`kb = {kb} ka`",
         "`--k2-over-k1`\n  (default {k2})",
         "**`--roughness-length L`** (default {roughness_length}:",
-        "**`--contact-scaling spacing|fixed`** (default {contact_scaling})",
+        "**`--contact-scaling spacing|fixed`** (default {contact_scaling}",
         "**`--dt {dt_word}`** (the default): {dt} R/c",
         "{dt_fine} at 12,800 points",
         "(`integrator {integrator}`, the default)",
@@ -132,13 +132,13 @@ PHRASES = {
     ],
     "docs/cluster.md": [
         "the wall has {wall_over_disk} the disk's points",
-        "(`--contact-scaling {contact_scaling}`:\na R = {contact_a} sqrt(n_disk / {n_disk}))",
+        "(`--contact-scaling {contact_scaling}`: a R = {contact_a} at any n_disk)",
         "(`--dt {dt_word}`:\n{dt} sqrt({n_disk} / n_disk))",
     ],
     "docs/contact.md": [
         "a = {contact_a} / R",
         "`a d` = {contact_a} x\n{cutoff} = {decays} decay lengths",
-        "(`--contact-scaling {contact_scaling}`, a R = {contact_a}\nsqrt(n_disk / {n_disk})",
+        "(`--contact-scaling {contact_scaling}`, a R = {contact_a} at any n_disk",
     ],
 }
 

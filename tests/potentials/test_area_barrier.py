@@ -16,7 +16,7 @@ from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
 from ground.launch import mpi_environment, mpi_launcher
-from tests.helpers import ROOT, new_lammps
+from tests.helpers import PAPER, ROOT, new_lammps
 
 pytestmark = pytest.mark.lammps
 
@@ -168,7 +168,10 @@ def test_a_triangle_driven_into_the_barrier_conserves_energy_and_momenta():
 def barrier_scene(folder):
     """A scene with the barrier at J_c 0.9, so that barrier_state's displaced
     state puts hundreds of triangles inside it."""
-    return write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_wall=800, area_floor=0.9)), folder)
+    return write_scene(
+        build_scene(SceneSpec(**{**PAPER, "gamma_deg": 30.0, "n_wall": 800, "area_floor": 0.9})),
+        folder,
+    )
 
 
 def barrier_state(tmp_path, scene, nprocs=1, newton="on", command=None, env=None, extra=()):

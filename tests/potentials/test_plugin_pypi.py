@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tests.contact_case import lammps_forces, random_case
-from tests.helpers import ROOT
+from tests.helpers import PAPER, ROOT
 
 pytestmark = pytest.mark.lammps
 
@@ -51,7 +51,9 @@ def test_spring_plugin_on_pypi_lammps_gives_debian_forces(tmp_path):
     from tests.potentials.test_spring_style import relative, spring_state
 
     assert SPRINGS_PLUGIN.exists(), "run make setup-pypi"
-    scene = write_scene(build_scene(SceneSpec(gamma_deg=30.0, n_disk=200)), tmp_path / "scene")
+    scene = write_scene(
+        build_scene(SceneSpec(gamma_deg=30.0, n_disk=200, **PAPER)), tmp_path / "scene"
+    )
     debian = spring_state(tmp_path, scene, "harmonic/quartic")
     command, env = pypi_lmp()
     pypi = spring_state(

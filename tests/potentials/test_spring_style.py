@@ -18,7 +18,7 @@ from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from builder.scene import SceneSpec
 from ground.launch import mpi_environment, mpi_launcher
-from tests.helpers import ROOT, new_lammps
+from tests.helpers import PAPER, ROOT, new_lammps
 
 pytestmark = pytest.mark.lammps
 
@@ -28,8 +28,8 @@ LIBRARY = ROOT / "build" / "libharmonic_quartic.so"
 
 @pytest.fixture(scope="module")
 def scenes(tmp_path_factory) -> dict[str, Path]:
-    """The default scene (800-point wall), written for both bond styles."""
-    scene = build_scene(SceneSpec(gamma_deg=30.0, n_wall=800))
+    """The paper's scene (800-point wall), written for both bond styles."""
+    scene = build_scene(SceneSpec(gamma_deg=30.0, n_wall=800, **PAPER))
     root = tmp_path_factory.mktemp("springs")
     return {
         springs: write_scene(scene, root / springs.replace("/", "_"), springs)

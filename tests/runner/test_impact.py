@@ -19,7 +19,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_error
 from runner.impact import run_impact, run_scene
 from runner.options import DEFAULT_DT, RESPA_DT, RESPA_NRESPA, RunOptions
-from tests.helpers import ROOT, SMALL, new_lammps
+from tests.helpers import PAPER, PAPER_ARGS, ROOT, SMALL, new_lammps
 
 
 def free_flight(scene_dir, dt: float, time: float = 5.0) -> tuple[np.ndarray, np.ndarray]:
@@ -107,6 +107,7 @@ def head_on(tmp_path_factory):
             gamma_deg=0.0,
             vn=vn,
             roughness=0.0,
+            **PAPER,
             wall_fixed="all",
             n_wall="density",
             contact_mass="point",
@@ -292,7 +293,7 @@ def test_one_and_two_ranks_agree(tmp_path, roughness, gamma, bound, options):
     (docs/benchmarks/validation_table.md), so the bound there is that spread's 1e-2
     (measured: 7e-10); at 45 degrees on the default wall the two runs part
     by 4e-4, within that scene's spread, and are not compared."""
-    scene = build_scene(SceneSpec(gamma_deg=gamma, roughness=roughness))
+    scene = build_scene(SceneSpec(gamma_deg=gamma, roughness=roughness, **PAPER))
     results = [
         run_scene(write_scene(scene, tmp_path / str(n)), dataclasses.replace(options, nprocs=n))
         for n in (1, 2)
@@ -308,8 +309,18 @@ def test_a_drift_above_the_threshold_is_flagged_and_warned_of(tmp_path):
     it, it stays silent. (The default 0.05 sits above the drift of the paper
     study's worst impacts at the default dt, docs/benchmarks/drift_tail.md.)"""
     out = tmp_path / "coarse"
+    # the paper's scene, whose drifts the guard was set by
     proc = runner_cli(
-        "impact", "--gamma", "60", "--seed", "3", "--max-drift", "1e-5", "--out", str(out)
+        "impact",
+        "--gamma",
+        "60",
+        "--seed",
+        "3",
+        *PAPER_ARGS,
+        "--max-drift",
+        "1e-5",
+        "--out",
+        str(out),
     )
     assert proc.returncode == 0, proc.stderr
     warning = proc.stderr.strip().splitlines()
@@ -330,12 +341,26 @@ def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
     stability of the springs: the run stops at a check, writes no result,
     and the error names dt and the default."""
     out = tmp_path / "unstable"
+    # the paper's scene: its springs blow up (the default body's barrier stops
+    # the run first, below)
+    proc = runner_cli(
+        "impact", "--gamma", "60", "--seed", "3", *PAPER_ARGS, "--dt", "0.05", "--check", "40",
+        "--out", str(out),
+    )  # fmt: skip
+    assert proc.returncode == 1
+    error = proc.stderr.strip().splitlines()
+    assert len(error) == 1 and "the run went unstable" in error[0]
+    assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
+    assert not (out / "result.json").exists()
+    # the default body: a triangle crosses the barrier within one step, and
+    # the error names dt and the default too
+    out = tmp_path / "unstable_body"
     proc = runner_cli(
         "impact", "--gamma", "60", "--seed", "3", "--dt", "0.05", "--check", "40", "--out", str(out)
     )
     assert proc.returncode == 1
     error = proc.stderr.strip().splitlines()
-    assert len(error) == 1 and "the run went unstable" in error[0]
+    assert len(error) == 1 and "crossed the barrier within one step" in error[0]
     assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
     assert not (out / "result.json").exists()
 

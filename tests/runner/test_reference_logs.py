@@ -1,4 +1,4 @@
-"""A fresh one-rank run of the default impact reproduces the committed
+"""A fresh one-rank run of the paper's impact reproduces the committed
 reference log, decks/log.<date>.impact.g++.1 (``make reference-logs``).
 
 Tolerance: every thermo value within 1e-6 of its column's largest magnitude,
@@ -11,7 +11,7 @@ The committed one- and two-rank logs sum their forces in different orders
 scene before today's default that round-off grew about tenfold every 100
 steps once the disk pressed in, from below the printed digits to 1e-6 of the
 scale at t = 6.2 R/c and to 9e-2 at 7.3 (a 1e-9 R move of the disk's points
-spreads e by 1e-2, docs/benchmarks/validation_table.md); on today's default the two
+spreads e by 1e-2, docs/benchmarks/validation_table.md); on the paper's scene the two
 committed logs agree to every printed digit (measured 2026-11-24), which
 another machine need not repeat. So the two logs
 are compared to 1e-6 over the first CHAOS_FREE_TIME of the impact, the

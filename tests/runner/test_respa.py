@@ -26,7 +26,7 @@ from builder.scene import SceneSpec
 from ground.launch import command_line, mpi_environment, mpi_launcher
 from runner.impact import run_scene
 from runner.options import RESPA_NRESPA, RunOptions
-from tests.helpers import ROOT
+from tests.helpers import PAPER, ROOT
 
 pytestmark = [pytest.mark.lammps, pytest.mark.mpi]
 
@@ -36,9 +36,11 @@ TOLERANCE = 1e-12
 
 @pytest.fixture(scope="module")
 def pressed(tmp_path_factory):
-    """The default scene at 45 degrees, run with Verlet and a dump at every row
+    """The paper's scene at 45 degrees, run with Verlet and a dump at every row
     of the series: its folder and the dumped step of the largest contact energy."""
-    folder = write_scene(build_scene(SceneSpec(gamma_deg=45.0)), tmp_path_factory.mktemp("pressed"))
+    folder = write_scene(
+        build_scene(SceneSpec(gamma_deg=45.0, **PAPER)), tmp_path_factory.mktemp("pressed")
+    )
     run_scene(folder, RunOptions(dump_every=RunOptions().every_steps))
     series = read_series(folder / "series.dat")
     return folder, int(series["step"][np.argmax(series["pe_contact"])])

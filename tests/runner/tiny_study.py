@@ -10,8 +10,10 @@ import sys
 from tests.helpers import ROOT, RUNS
 
 # SMALL's scene (tests/helpers.py): the 200-point disk on the 1,600-point wall, the paper's contact
+# and roughness
 TINY = ["--lattices", "random", "--angles", "3", "--samples", "2", "--n-disk", "200"]
-TINY += ["--n-wall", "1600", "--contact-scaling", "fixed"]
+TINY += ["--n-wall", "1600", "--contact-scaling", "fixed", "--roughness-length", "0"]
+TINY += ["--roughness-profile", "sampled", "--area-floor", "0"]
 COMPARED = (
     "study_lattice",
     "seed",
