@@ -353,11 +353,13 @@ def test_a_step_that_blows_up_stops_with_an_error_naming_dt(tmp_path):
     assert f"dt = 0.05 R/c; the default, {DEFAULT_DT:g}" in error[0]
     assert not (out / "result.json").exists()
     # the default body: a triangle crosses the barrier within one step, and
-    # the error names dt and the default too
+    # the error names dt and the default too (no halved step: that retry is
+    # tests/runner/test_barrier_halvings.py's)
     out = tmp_path / "unstable_body"
     proc = runner_cli(
-        "impact", "--gamma", "60", "--seed", "3", "--dt", "0.05", "--check", "40", "--out", str(out)
-    )
+        "impact", "--gamma", "60", "--seed", "3", "--dt", "0.05", "--check", "40",
+        "--barrier-halvings", "0", "--out", str(out),
+    )  # fmt: skip
     assert proc.returncode == 1
     error = proc.stderr.strip().splitlines()
     assert len(error) == 1 and "crossed the barrier within one step" in error[0]
