@@ -89,6 +89,14 @@ def build(spec: SceneSpec, folder: Path, cache: Path) -> tuple[float, float, flo
         str(spec.n_disk),
         "--roughness-length",
         repr(spec.roughness_length),
+        # the four options that carry the body to finer disks, all given: their
+        # defaults are the refined body's, not this page's scene
+        "--roughness-profile",
+        spec.roughness_profile,
+        "--contact-scaling",
+        spec.contact_scaling,
+        "--area-floor",
+        repr(spec.area_floor),
         "--gamma",
         repr(spec.gamma_deg),
         "--seed",
