@@ -74,6 +74,21 @@ void update_atoms(Vec3 *__restrict x, Vec3 *__restrict v, const Vec3 *__restrict
   }
 }
 
+// the loop for a closing kick (kicks 1, no drift), an opening one (1, drift)
+// or a deferred closing kick with the opening one (2, drift)
+template <bool RMASS>
+void update_by_mass(Vec3 *x, Vec3 *v, const Vec3 *f, const double *rmass, const double dtf,
+                    const double *dtfm_type, const int *type, const int *mask, const int bit,
+                    const int nlocal, const double dtv, const int kicks, const bool drift)
+{
+  if (!drift)
+    update_atoms<1, false, RMASS>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+  else if (kicks == 1)
+    update_atoms<1, true, RMASS>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+  else
+    update_atoms<2, true, RMASS>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
+}
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -158,21 +173,12 @@ void FixNVE2d::move_atoms(int kicks, bool drift)
   const int *const type = atom->type;
   const int *const mask = atom->mask;
   const int bit = groupbit;
-  if (rmass) {
-    if (!drift)
-      update_atoms<1, false, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-    else if (kicks == 1)
-      update_atoms<1, true, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-    else
-      update_atoms<2, true, true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-  } else {
-    if (!drift)
-      update_atoms<1, false, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-    else if (kicks == 1)
-      update_atoms<1, true, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-    else
-      update_atoms<2, true, false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv);
-  }
+  if (rmass)
+    update_by_mass<true>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv, kicks,
+                         drift);
+  else
+    update_by_mass<false>(x, v, f, rmass, dtf, dtfm_type, type, mask, bit, nlocal, dtv, kicks,
+                          drift);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -119,9 +119,7 @@ def run_scene(
         )
     for name in RUN_OUTPUTS:
         (folder / name).unlink(missing_ok=True)
-    options = options.for_scene(scene_spec(scene))
-    for _ in range(halvings):
-        options = halved_step(options)
+    options = halved_step(options.for_scene(scene_spec(scene)), halvings)
     options.validate()
 
     log = folder / "log.lammps"
@@ -174,10 +172,13 @@ def may_halve(error: str, halvings: int, options: RunOptions) -> bool:
     )
 
 
-def halved_step(options: RunOptions) -> RunOptions:
-    """``options`` at half the step, with its series' rows and checks at the
-    same times (given in steps, they double)."""
-    return replace(options, dt=options.dt / 2, every=2 * options.every, check=2 * options.check)
+def halved_step(options: RunOptions, times: int = 1) -> RunOptions:
+    """``options`` (dt a number) at the step halved ``times`` times, with its
+    series' rows and checks at the same times (given in steps, they double)."""
+    scale = 2**times
+    return replace(
+        options, dt=options.dt / scale, every=scale * options.every, check=scale * options.check
+    )
 
 
 def scene_spec(scene: dict) -> SceneSpec:

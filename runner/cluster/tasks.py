@@ -95,9 +95,7 @@ def impact_task(study: Study, job: dict) -> dict:
         return {"folder": job["folder"], "state": "settled"}
     attempts, error, halvings = earlier_attempt(job)
     if error:  # the last start ended its worker with this LAMMPS error
-        options = study.options.for_scene(study.spec(job))
-        for _ in range(halvings):
-            options = halved_step(options)
+        options = halved_step(study.options.for_scene(study.spec(job)), halvings)
         if not may_halve(error, halvings, options):
             return fail(job, error)
         # a step too long for the area barrier: this start runs at half of

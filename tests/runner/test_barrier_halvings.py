@@ -12,6 +12,7 @@ import sys
 import pytest
 
 from builder.scene import SceneSpec
+from builder.study_names import LIMITS
 from ground.launch import LammpsError
 from runner.impact import BARRIER_CROSSED, run_impact
 from runner.options import RunOptions
@@ -22,15 +23,7 @@ pytestmark = pytest.mark.lammps
 # The paper's slope as one surface (L = 0.06 R) with the barrier, sliding at
 # 80.5 degrees: at 1.5 times the 800-point disk's step a surface triangle
 # turns over between two steps (at step 526); at the default step it does not.
-CROSSING = SceneSpec(
-    n_disk=800,
-    gamma_deg=80.5,
-    seed=1,
-    roughness_length=0.06,
-    roughness_profile="continuous",
-    contact_scaling="physical",
-    area_floor=0.5,
-)
+CROSSING = SceneSpec(n_disk=800, gamma_deg=80.5, seed=1, **LIMITS["paper-slope-floor"])
 LONG_STEP = 0.012
 
 
