@@ -201,7 +201,7 @@ def page(rows: list[dict], setup: Setup, figures: Path) -> str:
     return text
 
 
-def halved_step(rows: list[dict]) -> list[dict]:
+def shorter_step(rows: list[dict]) -> list[dict]:
     """The rows run at a shorter step than their level's (reading and N)
     longest: impacts that a triangle crossing the area barrier made run again
     at half the step (runner.impact, barrier_halvings)."""
@@ -221,7 +221,7 @@ def render_page(setup, rows, summary, found, shown, too_few, levels, readings, p
         study=setup.study,
         impacts=len(rows),
         failed=len(rows) - len(finished(rows)),
-        halved=len(halved_step(rows)),
+        halved=len(shorter_step(rows)),
         coverage=coverage(summary),
         readings=[{"name": r, "text": reading_text(r)} for r in readings],
         excluded=[

@@ -8,6 +8,7 @@ import sys
 from ground.errors import InputError
 from ground.launch import LammpsError
 
+from ..impact import BARRIER_CROSSED
 from ..options import AUTO, DEFAULT_DT, RUN_OPTIONS, RunOptions
 
 # Options that apply to one integrator or contact: None means "not given",
@@ -50,7 +51,7 @@ def unstable_hint(error: Exception, args) -> str:
         )
     # the springs' blow-up, or (with --area-floor) a triangle that crossed the
     # barrier within one step: both a step too long for the scene
-    if "unstable" not in text and "crossed the barrier within one step" not in text:
+    if "unstable" not in text and BARRIER_CROSSED not in text:
         return ""
     return (
         f" (dt = {args.dt:g} R/c; the default, {default:g}, is the largest step found "
