@@ -255,7 +255,11 @@ def limits(
     steps; with ``rows``, the steps of the quantities that have a value per
     seed (PAIRED) are the per-seed differences paired by seed and angle
     (``analysis.statistics.levels.coupled_differences``: right whether or not the seeds
-    are coupled across N, and tighter where they are)."""
+    are coupled across N, and tighter where they are). For a reading whose
+    seeds draw one surface at every N (COUPLED), and whose every step varies
+    less than its level, those quantities' levels from
+    extrapolation.FIT_FROM up enter as their multilevel estimates
+    (``coupled_levels``), with their covariance."""
     pairs = sorted({(k[0], k[1]) for k in summary}, key=order)
     out = {}
     for limit, lattice in pairs:
@@ -264,14 +268,43 @@ def limits(
         }
         mine = [r for r in rows or () if r["limit"] == limit and r["study_lattice"] == lattice]
         for q in quantities:
-            steps = None
+            steps, pays = None, False
             if mine and q in PAIRED:
-                found = levels.coupled_differences(mine, q)
-                steps = {d["n"]: (d["mean"], d["se"]) for d in found}
-            out[(limit, lattice, q)] = extrapolation.limit(
-                levels_of(summary, limit, lattice, q), steps, seeds
-            )
+                differences = levels.coupled_differences(mine, q)
+                steps = {d["n"]: (d["mean"], d["se"]) for d in differences}
+                # the multilevel estimate pays where every step varies less
+                # than its level (the smooth disk's interiors, drawn anew at
+                # each N, couple nothing)
+                pays = limit in COUPLED and all(
+                    d["variance_ratio"] < 1 for d in differences if d["n"] > extrapolation.FIT_FROM
+                )
+            found, covariance = levels_of(summary, limit, lattice, q), None
+            if pays:
+                found, covariance = coupled_levels(found, steps)
+            out[(limit, lattice, q)] = extrapolation.limit(found, steps, seeds, covariance)
     return out
+
+
+def coupled_levels(found: list[tuple], steps: dict) -> tuple[list[tuple], dict | None]:
+    """The levels (N, value, error) from extrapolation.FIT_FROM up as their
+    multilevel estimates (analysis.statistics.levels.multilevel_levels): the
+    FIT_FROM level over all its seeds plus the paired steps up to each, which
+    vary far less than the levels where one surface serves every N. Unbiased
+    as the levels are, and on more seeds; their errors are then correlated
+    (the covariance, for the fits). The levels as they are (and no
+    covariance) unless the steps join every one of them."""
+    by_n = {n: (v, s) for n, v, s in found}
+    fitted = sorted(n for n in by_n if n >= extrapolation.FIT_FROM)
+    if not fitted or fitted[0] != extrapolation.FIT_FROM:
+        return found, None
+    base = (fitted[0], *by_n[fitted[0]])
+    chain, covariance = levels.multilevel_levels(
+        base, {n: steps[n] for n in fitted[1:] if n in steps}
+    )
+    if [n for n, _, _ in chain] != fitted:
+        return found, None
+    below = [x for x in found if x[0] < extrapolation.FIT_FROM]
+    return below + chain, covariance
 
 
 def order(key: tuple[str, str]) -> tuple[int, str, str]:

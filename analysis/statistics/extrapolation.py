@@ -28,6 +28,11 @@ degrees of freedom) and no smaller than the step before is
 levels' errors combine as independent draws (rows whose seeds are coupled
 across N pass the paired steps' own errors, ``steps``).
 
+Levels whose errors are correlated (multilevel estimates, which share the
+coarsest level's: analysis.statistics.levels.multilevel_levels) pass their
+covariance; the forms are then fitted by generalized least squares (the
+covariance as curve_fit's sigma) and chi^2 is r^T C^-1 r.
+
 How far the 800-point level lies from the limit is the fits' c (the curve's
 rise from h = 0 to h = 1) with its error: the 800-point value is itself in
 the fits, so its distance from their intercept in combined errors would
@@ -65,9 +70,10 @@ def _model(form: str):
     return lambda h, q0, c, p: q0 + c * h**p
 
 
-def fit_form(n, q, sd, form: str) -> dict | None:
-    """One form fitted to levels (N, Q, sd); None with too few levels (the
-    power law needs four) or if the fit fails.
+def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
+    """One form fitted to levels (N, Q, sd), or to levels whose errors are
+    correlated (``covariance``, whose diagonal is sd squared); None with too
+    few levels (the power law needs four) or if the fit fails.
 
     Returns
     -------
@@ -83,21 +89,26 @@ def fit_form(n, q, sd, form: str) -> dict | None:
     if len(q) < parameters + 1:
         return None
     line = np.polyfit(h, q, 1, w=1.0 / sd)
+    sigma = sd if covariance is None else np.asarray(covariance, float)
     try:
         if form == "power":
             p0 = (line[1], line[0], 1.0)
             bounds = ([-np.inf, -np.inf, POWER_BOUNDS[0]], [np.inf, np.inf, POWER_BOUNDS[1]])
             coef, cov = optimize.curve_fit(
-                _model(form), h, q, p0=p0, sigma=sd, absolute_sigma=True, bounds=bounds
+                _model(form), h, q, p0=p0, sigma=sigma, absolute_sigma=True, bounds=bounds
             )
         else:
             coef, cov = optimize.curve_fit(
-                _model(form), h, q, p0=(line[1], line[0]), sigma=sd, absolute_sigma=True
+                _model(form), h, q, p0=(line[1], line[0]), sigma=sigma, absolute_sigma=True
             )
-    except (RuntimeError, ValueError):
+        residual = q - _model(form)(h, *coef)
+        chi2 = (
+            float(np.sum((residual / sd) ** 2))
+            if covariance is None
+            else float(residual @ np.linalg.solve(sigma, residual))
+        )
+    except (RuntimeError, ValueError, np.linalg.LinAlgError):
         return None
-    residual = (q - _model(form)(h, *coef)) / sd
-    chi2 = float(np.sum(residual**2))
     dof = len(q) - parameters
     errors = np.sqrt(np.diag(cov))
     p_value = float(stats.chi2.sf(chi2, dof))
@@ -167,9 +178,12 @@ def limit(
     levels: list[tuple[int, float, float]],
     steps: dict | None = None,
     seeds: dict | None = None,
+    covariance: dict | None = None,
 ) -> dict:
     """A quantity's limit N -> infinity from its levels (N, value, sd);
-    ``steps`` and ``seeds`` as for ``halvings``.
+    ``steps`` and ``seeds`` as for ``halvings``; ``covariance`` (N, N') ->
+    the covariance of two levels' errors where they are correlated (its
+    diagonal the sd squared), for the fits.
 
     Returns
     -------
@@ -208,7 +222,8 @@ def limit(
         out["status"] = "too few"
         return out
     n, q, sd = zip(*use, strict=True)
-    out["forms"] = {form: fit_form(n, q, sd, form) for form in FORMS}
+    matrix = None if covariance is None else [[covariance[a, b] for b in n] for a in n]
+    out["forms"] = {form: fit_form(n, q, sd, form, matrix) for form in FORMS}
     if out["halvings"] and not out["halvings"]["converged"]:
         out["status"] = "not converged"
         return out

@@ -162,3 +162,36 @@ def variance_per_seed(sd: float, seeds: int) -> float:
     """A level's per-seed variance from the error of its estimate over
     ``seeds`` seeds (se^2 n): for quantities with no per-seed value (a fit)."""
     return float(sd**2 * seeds)
+
+
+def multilevel_levels(
+    base: tuple[int, float, float], steps: dict[int, tuple[float, float]]
+) -> tuple[list[tuple[int, float, float]], dict[tuple[int, int], float]]:
+    """Each level's multilevel estimate: the coarsest level ``base`` (N_0,
+    value, error over all its seeds) plus the paired steps up to it
+    (``steps``: N -> mean of Q(N) - Q(N/2) and its error, from
+    ``coupled_differences``), following the halvings from N_0 while a step
+    is there.
+
+    Returns
+    -------
+    levels : list of (N, value, sd)
+    covariance : dict
+        (N, N') -> the covariance of the two estimates' errors: they share
+        the coarsest level's and the steps below the coarser of the two,
+        each term from its own seeds' draw and so independent of the others.
+    """
+    n0, value, sd = base
+    chain, variances = [(n0, value)], [sd**2]
+    while 2 * chain[-1][0] in steps:
+        n = 2 * chain[-1][0]
+        mean, se = steps[n]
+        chain.append((n, chain[-1][1] + mean))
+        variances.append(variances[-1] + se**2)
+    out = [(n, v, math.sqrt(var)) for (n, v), var in zip(chain, variances, strict=True)]
+    covariance = {
+        (a, b): variances[min(i, j)]
+        for i, (a, _) in enumerate(chain)
+        for j, (b, _) in enumerate(chain)
+    }
+    return out, covariance

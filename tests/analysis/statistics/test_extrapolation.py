@@ -113,3 +113,36 @@ def test_at_few_seeds_a_step_is_real_only_beyond_the_t_quantile():
     assert many["last_is_real"] and not many["converged"]
     assert few["threshold"] == pytest.approx(3.182446, rel=1e-6)
     assert not few["last_is_real"] and few["converged"]
+
+
+def test_correlated_levels_are_fitted_by_generalized_least_squares():
+    # the GLS intercept, its error and chi^2 from the normal equations
+    # (X^T C^-1 X) b = X^T C^-1 q, written here apart from curve_fit
+    n = np.array(NS, float)
+    q = 0.7 + 0.1 * spacing(n) + np.array([0.003, -0.004, 0.01, -0.01, 0.02])
+    var = np.cumsum([0.01**2, 0.004**2, 0.003**2, 0.003**2, 0.002**2])
+    cov = np.minimum.outer(var, var)  # multilevel levels share what lies below both
+    found = fit_form(n, q, np.sqrt(var), "h", cov)
+    x = np.stack([np.ones_like(n), spacing(n)], axis=1)
+    inverse = np.linalg.inv(cov)
+    normal = np.linalg.inv(x.T @ inverse @ x)
+    b = normal @ x.T @ inverse @ q
+    r = q - x @ b
+    assert found["limit"] == pytest.approx(b[0], rel=1e-7)
+    assert found["limit_sd"] == pytest.approx(np.sqrt(normal[0, 0]), rel=1e-6)
+    assert found["chi2"] * found["dof"] == pytest.approx(r @ inverse @ r, rel=1e-6)
+    # the same levels taken as independent: another (wrong) answer
+    assert fit_form(n, q, np.sqrt(var), "h")["limit"] != pytest.approx(b[0], rel=1e-3)
+
+
+def test_a_diagonal_covariance_is_the_independent_fit():
+    sd = np.array([0.01, 0.012, 0.02, 0.03, 0.04])
+    n = np.array(NS, float)
+    q = 0.7 + 0.1 * spacing(n) ** 1.5 + np.array([0.003, -0.004, 0.01, -0.01, 0.02])
+    for form in ("h", "h2", "power"):
+        plain, diagonal = fit_form(n, q, sd, form), fit_form(n, q, sd, form, np.diag(sd**2))
+        for key in ("limit", "limit_sd", "chi2", "p"):
+            assert diagonal[key] == pytest.approx(plain[key], rel=1e-6)
+    covariance = {(a, b): (s**2 if a == b else 0.0) for a, s in zip(NS, sd) for b in NS}
+    found = limit(list(zip(NS, q, sd)), covariance=covariance)
+    assert found["value"] == pytest.approx(limit(list(zip(NS, q, sd)))["value"], rel=1e-6)

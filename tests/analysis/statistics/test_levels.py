@@ -6,7 +6,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from analysis.statistics.levels import allocation, cost_per_impact, coupled_differences
+from analysis.kinds.resolution import coupled_levels
+from analysis.statistics.levels import (
+    allocation,
+    cost_per_impact,
+    coupled_differences,
+    multilevel_levels,
+)
 
 GAMMAS = {5.0: 11.43, 20.0: 2.75, 40.0: 1.19, 60.0: 0.58, 70.0: 0.36, 80.0: 0.18}
 
@@ -96,3 +102,53 @@ def test_cost_is_atom_steps_without_timings_and_seconds_with_them():
     for r in data:
         r["wall_seconds"] = str(float(r["n_disk"]) / 100)
     assert cost_per_impact(data)[3200] == pytest.approx(32.0)
+
+
+def plain_mean(data: list[dict], n: int) -> float:
+    """e_normal of level n as the page takes it: the mean over the seeds of
+    each seed's mean e at cot gamma >= 1."""
+    by_seed: dict[str, list[float]] = {}
+    for r in data:
+        if int(r["n_disk"]) == n and float(r["cot_gamma"]) >= 1.0:
+            by_seed.setdefault(r["seed"], []).append(float(r["e"]))
+    return float(np.mean([np.mean(v) for v in by_seed.values()]))
+
+
+def test_multilevel_levels_telescope_to_the_levels_on_shared_seeds():
+    # every seed at every level: Q(800) + the paired steps is Q(N) itself
+    data = rows(True, seeds=12)
+    steps = {d["n"]: (d["mean"], d["se"]) for d in coupled_differences(data, "e_normal")}
+    base = (800, plain_mean(data, 800), 0.01)
+    found, covariance = multilevel_levels(base, steps)
+    assert [n for n, _, _ in found] == [800, 1600, 3200]
+    for n, value, _ in found:
+        assert value == pytest.approx(plain_mean(data, n), abs=1e-12)
+    # errors add up the halvings; two levels share the coarser one's
+    assert found[2][2] ** 2 == pytest.approx(0.01**2 + steps[1600][1] ** 2 + steps[3200][1] ** 2)
+    assert covariance[800, 3200] == pytest.approx(0.01**2)
+    assert covariance[3200, 1600] == pytest.approx(found[1][2] ** 2)
+
+
+def test_multilevel_levels_correct_a_fine_level_drawn_on_lucky_seeds():
+    # the fine level on its first 6 seeds only, which happen to be high: the
+    # multilevel estimate (all 40 seeds at 800 points plus the paired steps)
+    # lands near the level over all 40 seeds, the fine level's own mean does not
+    data = rows(True, seeds=40, rng_seed=3)
+    high = sorted(
+        {r["seed"] for r in data},
+        key=lambda s: -plain_mean([r for r in data if r["seed"] == s], 800),
+    )[:6]
+    thin = [r for r in data if r["n_disk"] != "3200" or r["seed"] in high]
+    steps = {d["n"]: (d["mean"], d["se"]) for d in coupled_differences(thin, "e_normal")}
+    found, _ = multilevel_levels((800, plain_mean(thin, 800), 0.005), steps)
+    whole, own = plain_mean(data, 3200), plain_mean(thin, 3200)
+    assert abs(found[-1][1] - whole) < 0.005 < abs(own - whole)
+
+
+def test_coupled_levels_need_every_fitted_level_joined():
+    found = [(400, 0.9, 0.01), (800, 0.8, 0.01), (1600, 0.79, 0.01), (3200, 0.78, 0.01)]
+    joined, covariance = coupled_levels(found, {1600: (-0.01, 0.002), 3200: (-0.01, 0.002)})
+    assert covariance is not None and joined[0] == (400, 0.9, 0.01)
+    assert [round(v, 12) for _, v, _ in joined[1:]] == [0.8, 0.79, 0.78]
+    # a step missing (too few paired seeds): the levels as they are
+    assert coupled_levels(found, {3200: (-0.01, 0.002)}) == (found, None)
