@@ -36,7 +36,7 @@ help:
 	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the paper's scene changes)"
 	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
-	@echo "make validate      LAMMPS against the in-house reference integrator, ten scenes"
+	@echo "make validate      LAMMPS against the in-house reference integrator, thirteen scenes"
 	@echo "make bench         run time against error of integrators and time steps"
 	@echo "make bench-impact  steps per second of the default scene (docs/benchmarks.md)"
 	@echo "make bench-study   run settings, stop rule and stability benchmarks (docs/benchmarks/)"
@@ -215,7 +215,7 @@ lint: $(STAMPS)/python
 calibrate: setup
 	$(PYTHON) -m calibration run --install
 
-# LAMMPS at the default settings against the reference on ten scenes
+# LAMMPS at the default settings against the reference on thirteen scenes
 # (docs/benchmarks/validation_table.md); the reference runs are kept in runs/validation.
 validate: setup
 	$(PYTHON) -m bench.validation --docs

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -292,9 +292,16 @@ class System:
     k2: np.ndarray  # (m,) class2 coefficients: E = k2 dr^2 + k3 dr^3 + k4 dr^4
     k3: np.ndarray
     k4: np.ndarray
+    # the barrier's triangles (angle style area/barrier, --area-floor), as the
+    # Angles section lists their atoms, and each one's A0, k, J_c from its
+    # type's Angle Coeffs; none without the barrier
+    angles: np.ndarray = field(default_factory=lambda: np.zeros((0, 3), int))  # (t, 3)
+    a0: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (t,)
+    k_area: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (t,)
+    jc: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (t,)
 
 
-# a data file's sections; the barrier's angles (--area-floor) are read past
+# a data file's sections; the barrier's angles with --area-floor
 SECTIONS = ("Masses", "Bond Coeffs", "Atoms", "Velocities", "Bonds", "Angle Coeffs", "Angles")
 
 
@@ -310,6 +317,32 @@ def _sections(text: str) -> dict[str, list[str]]:
         else:
             sections[name].append(stripped)
     return sections
+
+
+def _angles(sections: dict[str, list[str]], path: Path | str) -> dict[str, np.ndarray]:
+    """The barrier's triangles of a data file's Angles and Angle Coeffs
+    (area/barrier: A0 k J_c per type), as System's fields; none if it has no
+    Angles section."""
+    if "Angles" not in sections:
+        return {}
+    if "Angle Coeffs" not in sections:
+        raise ValueError(f"{path}: Angles but no Angle Coeffs section")
+    coeffs = np.array([r.split() for r in sections["Angle Coeffs"]], float)
+    if coeffs.ndim != 2 or coeffs.shape[1] != 4:
+        raise ValueError(f"{path}: Angle Coeffs must be 'type A0 k Jc' ({ANGLE_STYLE})")
+    rows = np.array([r.split() for r in sections["Angles"]], int).reshape(-1, 5)
+    rows = rows[np.argsort(rows[:, 0])]
+    by_type = np.full((max(int(coeffs[:, 0].max()), int(rows[:, 1].max())) + 1, 3), np.nan)
+    by_type[coeffs[:, 0].astype(int)] = coeffs[:, 1:]
+    values = by_type[rows[:, 1]]
+    if np.isnan(values).any():
+        raise ValueError(f"{path}: an angle's type has no Angle Coeffs line")
+    return {
+        "angles": rows[:, 2:5] - 1,
+        "a0": values[:, 0],
+        "k_area": values[:, 1],
+        "jc": values[:, 2],
+    }
 
 
 def read_data(path: Path | str) -> System:
@@ -356,6 +389,7 @@ def read_data(path: Path | str) -> System:
     bonds = np.array([r.split() for r in sections["Bonds"]], int)
     kind = bonds[:, 1] - 1
     return System(
+        **_angles(sections, path),
         x=atoms[:, 3:5].copy(),
         v=v,
         mass=np.array([masses[t] for t in types]),

@@ -1,9 +1,11 @@
-"""Forces of the whole model: class2 springs and the contact (disk and wall, or two disks)."""
+"""Forces of the whole model: class2 springs, the area barrier on the bodies'
+triangles (--area-floor) and the contact (disk and wall, or two disks)."""
 
 from __future__ import annotations
 
 import ctypes
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sparse
@@ -27,6 +29,82 @@ def compiled_springs():
     return function
 
 
+class TurnedOver(RuntimeError):
+    """A triangle of the barrier was found turned over (J <= 0 with J_c > 0):
+    it crossed the barrier within one step."""
+
+
+class Barrier(NamedTuple):
+    """What ``area_barrier`` finds at one configuration."""
+
+    force: np.ndarray  # (n, 2) on the atoms
+    energy: float
+    each: np.ndarray  # (t,) each triangle's energy
+    ratio: np.ndarray  # (t,) each triangle's J = A / A0
+
+
+def area_barrier(
+    x: np.ndarray, triangles: np.ndarray, a0: np.ndarray, k: np.ndarray, jc: np.ndarray
+) -> Barrier:
+    """The area barrier's forces and energy (docs/model.md, ``--area-floor``).
+
+    Each triangle (p, q, r) has the signed area A = (q - p) x (r - p) / 2,
+    positive counter-clockwise, and J = A / A0. Below J_c its energy is
+    k A0 [J_c / J - 1 + ln(J / J_c)], zero above; so dE/dA = k (J - J_c) / J^2,
+    and dA/dp = z x (r - q) / 2 (each vertex: the opposite edge, turned a
+    quarter to the left, halved), so that the force on p is -dE/dA dA/dp.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        (n, 2) positions.
+    triangles : numpy.ndarray
+        (t, 3) atom indices, counter-clockwise at rest.
+    a0, k, jc : numpy.ndarray
+        (t,) each triangle's area at rest, stiffness and J_c.
+
+    Returns
+    -------
+    Barrier
+        The forces, the energy, each triangle's energy and its J.
+
+    Raises
+    ------
+    TurnedOver
+        If a triangle with J_c > 0 has J <= 0.
+    """
+    force = np.zeros_like(x)
+    each = np.zeros(len(triangles))
+    if len(triangles) == 0:
+        return Barrier(force, 0.0, each, np.zeros(0))
+    p, q, r = (x[triangles[:, i]] for i in range(3))
+    u, w = q - p, r - p
+    j = 0.5 * (u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]) / a0
+    inside = np.flatnonzero((j < jc) & (jc > 0.0))
+    if inside.size == 0:
+        return Barrier(force, 0.0, each, j)
+    j_in, jc_in, k_in, a0_in = j[inside], jc[inside], k[inside], a0[inside]
+    if (j_in <= 0.0).any():
+        worst = inside[np.argmin(j_in)]
+        raise TurnedOver(
+            f"triangle of atoms {' '.join(str(i + 1) for i in triangles[worst])} turned over "
+            f"(J = {j[worst]:.6g}): it crossed the barrier within one step"
+        )
+    each[inside] = k_in * a0_in * (jc_in / j_in - 1.0 + np.log(j_in / jc_in))
+    de_da = k_in * (j_in - jc_in) / (j_in * j_in)
+    corners = triangles[inside]
+    n = len(x)
+    for vertex in range(3):
+        # the edge opposite the vertex, from the next vertex to the one after
+        edge = x[corners[:, (vertex + 2) % 3]] - x[corners[:, (vertex + 1) % 3]]
+        # -dE/dA times z x edge / 2, z x (ex, ey) = (-ey, ex)
+        fx = 0.5 * de_da * edge[:, 1]
+        fy = -0.5 * de_da * edge[:, 0]
+        force[:, 0] += np.bincount(corners[:, vertex], fx, minlength=n)
+        force[:, 1] += np.bincount(corners[:, vertex], fy, minlength=n)
+    return Barrier(force, float(each.sum()), each, j)
+
+
 @dataclass
 class Model:
     """The interactions of a scene, ready to evaluate."""
@@ -43,7 +121,13 @@ class Model:
     # disk's ring) repels and which repels it (reference.contact.two_ring_contact)
     partner_ring: np.ndarray | None = None
     compiled: bool = True  # springs by the C loop when it is built
+    barrier: bool = True  # the area barrier, when the data file has its angles
     incidence: sparse.csr_matrix = field(init=False, repr=False)
+    # what the barrier saw over the evaluations since the model was made, as
+    # fix area/barrier counts it: the most triangles inside at once (J < J_c)
+    # and the smallest J
+    in_barrier_max: int = field(init=False, default=0)
+    area_ratio_min: float = field(init=False, default=np.inf)
 
     def __post_init__(self) -> None:
         # bond vectors x_j - x_i = B x, forces on atoms = -B^T (tension along bond)
@@ -76,6 +160,25 @@ class Model:
         # dE/dr along the bond, pulling its ends together when stretched
         tension = (dr * (2.0 * s.k2 + dr * (3.0 * s.k3 + dr * 4.0 * s.k4))) / r
         return -(self.incidence_t @ (tension[:, None] * d)), energy
+
+    def barrier_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
+        """The area barrier's forces and energy (``area_barrier``); zero
+        without the data file's angles or with ``barrier`` off."""
+        s = self.system
+        if not self.barrier or len(s.angles) == 0:
+            return np.zeros_like(x), 0.0
+        found = area_barrier(x, s.angles, s.a0, s.k_area, s.jc)
+        self.in_barrier_max = max(self.in_barrier_max, int(np.sum(found.ratio < s.jc)))
+        self.area_ratio_min = min(self.area_ratio_min, float(found.ratio.min()))
+        return found.force, found.energy
+
+    def internal_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
+        """The bodies' own forces, springs and barrier, and their energy."""
+        springs, e_springs = self.spring_forces(x)
+        if not self.barrier or len(self.system.angles) == 0:
+            return springs, e_springs
+        barrier, e_barrier = self.barrier_forces(x)
+        return springs + barrier, e_springs + e_barrier
 
     def contact_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         force = np.zeros_like(x)
@@ -127,7 +230,7 @@ class Model:
         return force, float(energy.sum())
 
     def forces(self, x: np.ndarray) -> tuple[np.ndarray, float, float]:
-        """Total force, spring energy, contact energy."""
-        springs, e_springs = self.spring_forces(x)
+        """Total force, the bodies' own energy (springs and barrier), contact energy."""
+        internal, e_internal = self.internal_forces(x)
         contact, e_contact = self.contact_forces(x)
-        return springs + contact, e_springs, e_contact
+        return internal + contact, e_internal, e_contact

@@ -20,7 +20,7 @@ from ground.errors import InputError
 from ground.provenance import git_revision
 
 from .contact import InsideWall
-from .forces import Model
+from .forces import Model, TurnedOver, area_barrier
 from .integrators import SCHEMES, weights
 
 DISK, WALL_HELD = 1, 3
@@ -43,6 +43,9 @@ class ReferenceOptions:
     tmax: float = 100.0
     every: int = 10
     check: int = 100
+    # the area barrier of a scene with --area-floor; False leaves it out (to
+    # see what it changes: tests/reference/test_barrier.py)
+    barrier: bool = True
 
     def validate(self) -> None:
         DT.check("dt", self.dt)
@@ -75,6 +78,7 @@ def load_model(folder: Path, options: ReferenceOptions) -> Model:
         contact=options.contact,
         rule=options.rule,
         partner_ring=partner,
+        barrier=options.barrier,
     )
 
 
@@ -119,11 +123,17 @@ class Observer:
         dr = np.sqrt((d * d).sum(axis=1)) - s.r0
         e_bond = dr * dr * (s.k2 + dr * (s.k3 + dr * s.k4))
         in_disk = s.molecule[i] == DISK  # springs never cross bodies
+        # the barrier's energy, per body as the deck's pe/atom bond angle has it
+        # (triangles never cross bodies either)
+        e_angle = np.zeros(len(s.angles))
+        if self.model.barrier and len(s.angles):
+            e_angle = area_barrier(x, s.angles, s.a0, s.k_area, s.jc).each
+        angle_in_disk = s.molecule[s.angles[:, 0]] == DISK
         values = (
             ke[self.disk].sum(),
-            e_bond[in_disk].sum(),
+            e_bond[in_disk].sum() + e_angle[angle_in_disk].sum(),
             ke[self.wall].sum(),
-            e_bond[~in_disk].sum(),
+            e_bond[~in_disk].sum() + e_angle[~angle_in_disk].sum(),
             e_contact,
         )
         return f"{t:.10g} " + " ".join(repr(float(value)) for value in values) + "\n"
@@ -161,7 +171,7 @@ class Stepper:
 
     def forces(self, x):
         contact, e_contact = self.model.contact_forces(x)
-        return self.model.spring_forces(x)[0] + contact, contact, e_contact
+        return self.model.internal_forces(x)[0] + contact, contact, e_contact
 
     def step(self, x, v, force):
         """One step in place; returns the new (force, contact force, contact energy)."""
@@ -227,6 +237,8 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
             raise Unstable(
                 f"a disk point is inside the wall at time {step * dt:.4g}: {error}"
             ) from error
+        except TurnedOver as error:
+            raise Unstable(f"at time {step * dt:.4g}, {error}") from error
         step += 1
         if step % options.every == 0:
             series.append(observe.row(step, step * dt, x, v, contact, e_contact))
@@ -242,6 +254,13 @@ def simulate(folder: Path | str, options: ReferenceOptions) -> float:
     energies.append(observe.energies(step * dt, x, v, e_contact))
     gate.write_text(folder / "series.dat", "".join(series))
     gate.write_text(folder / "energy.dat", "".join(energies))
+    if model.barrier and len(model.system.angles):
+        # as decks/impact.lmp writes fix area/barrier's counts (here over every
+        # force evaluation: the steps, and a composition's substeps)
+        gate.write_text(
+            folder / "barrier.dat",
+            f"# most_in_barrier min_area_ratio\n{model.in_barrier_max} {model.area_ratio_min!r}\n",
+        )
     return seconds
 
 
@@ -261,7 +280,7 @@ def run_reference(folder: Path | str, options: ReferenceOptions) -> dict:
         The result (``analysis.impact.result.analyse_run``), as written to result.json.
     """
     folder = Path(folder)
-    for name in ("series.dat", "energy.dat", "run.json", "result.json"):
+    for name in ("series.dat", "energy.dat", "barrier.dat", "run.json", "result.json"):
         (folder / name).unlink(missing_ok=True)
     seconds = simulate(folder, options)
     run = {

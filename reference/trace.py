@@ -203,11 +203,11 @@ def trace(folder: Path | str, options: ReferenceOptions) -> Trace:
 
 
 class _EnergyStepper(Stepper):
-    """The reference's stepper, keeping the spring energy of the last
-    evaluation and the changes of closest feature between evaluations: at
-    every substep's positions, since a fourth-order composition's substeps
-    reach beyond the step (Forest-Ruth's by 1.35 dt), where a point can cross
-    a kink and come back within one step."""
+    """The reference's stepper, keeping the spring energy (with the area
+    barrier's, if any) of the last evaluation and the changes of closest
+    feature between evaluations: at every substep's positions, since a
+    fourth-order composition's substeps reach beyond the step (Forest-Ruth's
+    by 1.35 dt), where a point can cross a kink and come back within one step."""
 
     def __init__(self, model, scheme, dt):
         super().__init__(model, scheme, dt)
@@ -217,7 +217,7 @@ class _EnergyStepper(Stepper):
         self.codes = None
 
     def forces(self, x):
-        springs, self.e_springs = self.model.spring_forces(x)
+        springs, self.e_springs = self.model.internal_forces(x)
         contact, e_contact = self.model.contact_forces(x)
         model = self.model
         codes = feature_codes(x[model.disk_surface], x[model.wall_row], model.cutoff)

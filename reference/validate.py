@@ -13,6 +13,11 @@ chaotic spread is measured by perturbing the initial state.
 
 The reference runs Suzuki's fourth-order composition at dt = 1e-3 R/c; its
 runs are kept under the output folder and reused while their options match.
+
+Besides the paper's scenes, the rough table has the default body on the wall
+(builder.scene.BODY: one continuous surface per seed, the physical contact
+and the area barrier, ``body_random_g*``), whose barrier the reference
+implements on its own (reference.forces.area_barrier).
 """
 
 from __future__ import annotations
@@ -40,13 +45,16 @@ REFERENCE = ReferenceOptions(integrator="suzuki", dt=1e-3)
 
 # Two random disks colliding (builder/binary.py) at the middle angle.
 BINARY = {"random_disk_g45": {"lattice": "random", "gamma_deg": 45.0, "target": "disk"}}
+# The default body (builder.scene.BODY, the scene with no options) at the three angles.
+BODY_LATTICES = ("random",)
 
 
 def scenes(
-    n_disk: int = 800, roughness: float = 0.03, two_disks: bool = True
+    n_disk: int = 800, roughness: float = 0.03, two_disks: bool = True, body: bool = False
 ) -> dict[str, SceneSpec]:
     """The nine scenes of the disks on the wall, and (``two_disks``) one of two disks:
-    the paper's scene (builder.scene.PAPER; a binary scene's default), as validated."""
+    the paper's scene (builder.scene.PAPER; a binary scene's default), as validated;
+    with ``body`` also the default body's scenes (``body_scenes``)."""
     on_the_wall = {
         f"{lattice}_g{gamma:g}": SceneSpec(
             lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness, **extra, **PAPER
@@ -58,7 +66,24 @@ def scenes(
         name: SceneSpec(n_disk=n_disk, roughness=roughness, **fields)
         for name, fields in BINARY.items()
     }
-    return {**on_the_wall, **(binary if two_disks else {})}
+    return {
+        **on_the_wall,
+        **(binary if two_disks else {}),
+        **(body_scenes(n_disk, roughness) if body else {}),
+    }
+
+
+def body_scenes(n_disk: int = 800, roughness: float = 0.03) -> dict[str, SceneSpec]:
+    """The default body on the wall (builder.scene.BODY: a continuous surface
+    of correlation length 0.2 R, the physical contact, the area barrier at
+    J_c 0.5), random disk, at ``ANGLES``: ``body_random_g5.7`` ..."""
+    return {
+        f"body_{lattice}_g{gamma:g}": SceneSpec(
+            lattice=lattice, gamma_deg=gamma, n_disk=n_disk, roughness=roughness
+        )
+        for lattice in BODY_LATTICES
+        for gamma in ANGLES
+    }
 
 
 def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REFERENCE) -> dict:
@@ -86,6 +111,7 @@ def reference_run(spec: SceneSpec, folder: Path, options: ReferenceOptions = REF
         if (
             run["options"]["dt"] == options.dt
             and run["options"]["integrator"] == options.integrator
+            and run["options"].get("barrier", True) == options.barrier
             and scene["spec"] == asdict(spec)
         ):
             return json.loads(done.read_text())
@@ -170,9 +196,26 @@ def markdown(tables: dict) -> str:
             f"{row['dbeta']:+.0e} | {row['converged_de']:+.1e}, {row['converged_dbeta']:+.1e} "
             f"| {row['e_sd']:.1e}, {row['beta_sd']:.1e} | {row['energy_drift']:+.1e} |"
         )
+    barrier = [
+        "| scene | most triangles in the barrier at once: LAMMPS, reference | smallest J: "
+        "LAMMPS, reference |",
+        "|" + "---|" * 3,
+    ]
+    for name, row in tables["rough"].items():
+        if "in_barrier_max" in row:
+            barrier.append(
+                f"| {name} | {row['in_barrier_max']}, {row['in_barrier_max_ref']} "
+                f"| {row['area_ratio_min']:.6f}, {row['area_ratio_min_ref']:.6f} |"
+            )
     return (
         "## Smooth surfaces: accuracy\n\n"
         + "\n".join(smooth)
         + "\n\n## Rough surfaces: implementation and chaos\n\n"
         + "\n".join(rough)
+        + (
+            "\n\n## The default body's area barrier (same-step Verlet runs)\n\n"
+            + "\n".join(barrier)
+            if len(barrier) > 2
+            else ""
+        )
     )
