@@ -317,8 +317,7 @@ class Study:
         for job in jobs:
             if (Path(job["folder"]) / "result.json").exists():
                 spec = self.spec(job)
-                options = self.options.for_scene(spec).as_dict()
-                check_made_as_asked(job, asdict(spec), options)
+                check_made_as_asked(job, asdict(spec), self.options.for_scene(spec))
 
     def build(self, job: dict) -> Path:
         """The job's scene, written afresh into its folder (an impact killed

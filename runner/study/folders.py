@@ -16,6 +16,9 @@ import numpy as np
 
 from ground.gate import remove
 
+from ..impact import halved_step
+from ..options import RunOptions
+
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
 KEEP = ("result.json", "run.json", "scene.json", "series.dat", "energy.dat")
@@ -128,11 +131,12 @@ def first_difference(recorded: dict, asked: dict, prefix: str = "") -> tuple[str
     return "", None, None
 
 
-def check_made_as_asked(job: dict, scene: dict, options: dict) -> None:
+def check_made_as_asked(job: dict, scene: dict, options: RunOptions) -> None:
     """Refuse a finished impact that another study made: its scene.json's
     scene or its run.json's options differ from the study's (``scene``,
-    ``options``, what the study would run it with). An impact whose records
-    cannot be read is set aside (CORRUPT) and runs again.
+    ``options``, what the study would run it with, at the step its run
+    halved after a barrier crossing: run.json's dt_halvings). An impact
+    whose records cannot be read is set aside (CORRUPT) and runs again.
 
     Raises
     ------
@@ -147,9 +151,12 @@ def check_made_as_asked(job: dict, scene: dict, options: dict) -> None:
         return
     try:
         recorded = json.loads((folder / "scene.json").read_text())["spec"]
-        ran = json.loads((folder / "run.json").read_text())["options"]
+        run = json.loads((folder / "run.json").read_text())
+        ran, halvings = run["options"], run.get("dt_halvings", 0)
         if not (isinstance(recorded, dict) and isinstance(ran, dict)):
             raise TypeError("not a record")
+        if type(halvings) is not int or not 0 <= halvings <= options.barrier_halvings:
+            raise TypeError(f"dt_halvings {halvings!r} is not a count the run allows")
     except (OSError, ValueError, KeyError, TypeError) as error:
         result.replace(result.with_name(CORRUPT))
         print(
@@ -159,7 +166,8 @@ def check_made_as_asked(job: dict, scene: dict, options: dict) -> None:
             flush=True,
         )
         return
-    options = {k: v for k, v in options.items() if k not in RUN_ANY_WAY}
+    asked = halved_step(options, halvings).as_dict()
+    options = {k: v for k, v in asked.items() if k not in RUN_ANY_WAY}
     key, had, want = first_difference(
         {"scene": recorded, "run": ran}, {"scene": scene, "run": options}
     )

