@@ -16,7 +16,8 @@ sqrt(bias^2 + stat^2), and the seconds actually spent on the levels it uses:
 
 (a) one resolution alone: Q(N) with its seed error; the seconds of level N;
 (b) the extrapolation: analysis.statistics.extrapolation.limit of the levels 800..N
-    (its statistical error; the forms' band is a column of its own);
+    as measured, each on its own seeds (its statistical error; the forms' band
+    is a column of its own); Q_limit for e is the extrapolation of (c)'s levels;
 (c) the multilevel estimate: Q(800) + the per-seed differences paired by
     seed and angle up to N (analysis.statistics.levels.coupled_differences), its error
     the terms' errors summed in quadrature; e only (mu, a fit over the
@@ -184,9 +185,12 @@ def page(found: dict, study: str) -> str:
         "the estimate uses. Time to target: the seconds with every level's seeds scaled "
         "so that stat^2 + bias^2 = target^2 (stat ~ 1 / sqrt(seeds)); never where "
         "|bias| >= target. (b)'s band: the describing forms' intercepts. (c) for e only: "
-        "mu is a fit over the angles, with no per-seed value to pair. (b) at the finest "
-        "level is Q_limit itself, so its bias is 0 by construction; a bias smaller than "
-        "Q_limit's own errors is not told from zero.",
+        "mu is a fit over the angles, with no per-seed value to pair. Q_limit is the "
+        "resolution page's limit: for e, the extrapolation of the multilevel levels "
+        "(each level as (c) gives it), so (c)'s bias is small by construction; (b) "
+        "extrapolates the levels as measured, each on its own seeds (for mu, (b) at the "
+        "finest level is Q_limit itself). A bias smaller than Q_limit's own errors is "
+        "not told from zero.",
     ]
     for q, label in resolution.QUANTITIES:
         if q not in found:
