@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import replace
 from pathlib import Path
 
 from analysis.impact.result import analyse_run, write_json_atomically
@@ -16,7 +15,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
 from ground.provenance import git_revision
 
-from .options import DT, RunOptions
+from .options import DT, RunOptions, halved_step
 
 RUN_OUTPUTS = (
     "log.lammps",
@@ -169,15 +168,6 @@ def may_halve(error: str, halvings: int, options: RunOptions) -> bool:
         BARRIER_CROSSED in error
         and halvings < options.barrier_halvings
         and DT.contains(options.dt / 2)
-    )
-
-
-def halved_step(options: RunOptions, times: int = 1) -> RunOptions:
-    """``options`` (dt a number) at the step halved ``times`` times, with its
-    series' rows and checks at the same times (given in steps, they double)."""
-    scale = 2**times
-    return replace(
-        options, dt=options.dt / scale, every=scale * options.every, check=scale * options.check
     )
 
 

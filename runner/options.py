@@ -187,3 +187,12 @@ def on_ranks(options: RunOptions, ranks: int) -> RunOptions:
         A copy with ``nprocs`` and ``route`` set.
     """
     return replace(options, nprocs=ranks, route="lmp" if ranks > 1 else "python")
+
+
+def halved_step(options: RunOptions, times: int = 1) -> RunOptions:
+    """``options`` (dt a number) at the step halved ``times`` times, with its
+    series' rows and checks at the same times (given in steps, they double)."""
+    scale = 2**times
+    return replace(
+        options, dt=options.dt / scale, every=scale * options.every, check=scale * options.check
+    )

@@ -41,6 +41,8 @@ count it twice.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from scipy import optimize, stats
 
@@ -70,6 +72,14 @@ def _model(form: str):
     return lambda h, q0, c, p: q0 + c * h**p
 
 
+def _curve_fit(*args, **kwargs):
+    """scipy's curve_fit, quiet about parameters the levels leave undetermined:
+    their infinite errors make the form describe nothing (``fit_form``)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", optimize.OptimizeWarning)
+        return optimize.curve_fit(*args, **kwargs)
+
+
 def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
     """One form fitted to levels (N, Q, sd), or to levels whose errors are
     correlated (``covariance``, whose diagonal is sd squared); None with too
@@ -94,11 +104,11 @@ def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
         if form == "power":
             p0 = (line[1], line[0], 1.0)
             bounds = ([-np.inf, -np.inf, POWER_BOUNDS[0]], [np.inf, np.inf, POWER_BOUNDS[1]])
-            coef, cov = optimize.curve_fit(
+            coef, cov = _curve_fit(
                 _model(form), h, q, p0=p0, sigma=sigma, absolute_sigma=True, bounds=bounds
             )
         else:
-            coef, cov = optimize.curve_fit(
+            coef, cov = _curve_fit(
                 _model(form), h, q, p0=(line[1], line[0]), sigma=sigma, absolute_sigma=True
             )
         residual = q - _model(form)(h, *coef)

@@ -35,7 +35,8 @@ from analysis.impact.result import write_json_atomically
 from ground.gate import make_folder
 from ground.launch import lammps_error
 
-from ..impact import halved_step, may_halve, run_scene
+from ..impact import may_halve, run_scene
+from ..options import halved_step
 from ..study import Study
 from ..study.folders import STARTED, prune
 

@@ -16,8 +16,7 @@ import numpy as np
 
 from ground.gate import remove
 
-from ..impact import halved_step
-from ..options import RunOptions
+from ..options import RunOptions, halved_step
 
 # What a finished impact keeps: the rest (the data file above all, 1.5 MB) is
 # rebuilt from its seed in a second if needed.
