@@ -46,7 +46,7 @@ STUDIES = {
     "resolution_floor": (
         "profile-floor",
         "while the study ran on both cores of a shared 2-core machine, beside other "
-        "jobs at nice 19 (load about 2 to 4)",
+        "jobs and benchmarks (load about 2 to 7)",
     ),
     "resolution_profile": ("profile", "on a shared 2-core machine under a load of 10 to 17"),
 }

@@ -161,11 +161,16 @@ class Model:
         tension = (dr * (2.0 * s.k2 + dr * (3.0 * s.k3 + dr * 4.0 * s.k4))) / r
         return -(self.incidence_t @ (tension[:, None] * d)), energy
 
+    @property
+    def has_barrier(self) -> bool:
+        """Whether the barrier acts: the data file has its angles and ``barrier`` is on."""
+        return self.barrier and len(self.system.angles) > 0
+
     def barrier_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         """The area barrier's forces and energy (``area_barrier``); zero
-        without the data file's angles or with ``barrier`` off."""
+        without it (``has_barrier``)."""
         s = self.system
-        if not self.barrier or len(s.angles) == 0:
+        if not self.has_barrier:
             return np.zeros_like(x), 0.0
         found = area_barrier(x, s.angles, s.a0, s.k_area, s.jc)
         self.in_barrier_max = max(self.in_barrier_max, int(np.sum(found.ratio < s.jc)))
@@ -175,7 +180,7 @@ class Model:
     def internal_forces(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         """The bodies' own forces, springs and barrier, and their energy."""
         springs, e_springs = self.spring_forces(x)
-        if not self.barrier or len(self.system.angles) == 0:
+        if not self.has_barrier:  # the paper's scenes: no array of zeros to add
             return springs, e_springs
         barrier, e_barrier = self.barrier_forces(x)
         return springs + barrier, e_springs + e_barrier

@@ -126,7 +126,7 @@ class Observer:
         # the barrier's energy, per body as the deck's pe/atom bond angle has it
         # (triangles never cross bodies either)
         e_angle = np.zeros(len(s.angles))
-        if self.model.barrier and len(s.angles):
+        if self.model.has_barrier:
             e_angle = area_barrier(x, s.angles, s.a0, s.k_area, s.jc).each
         angle_in_disk = s.molecule[s.angles[:, 0]] == DISK
         values = (
