@@ -104,18 +104,20 @@ def coupled_samples_at(n_disk: int, samples: int) -> int:
     return max(MIN_SAMPLES, round(samples * (FULL_SAMPLES_UP_TO / n_disk) ** 0.75))
 
 
-def plan(choice: dict, study):
-    """The combination's study as run, or None to skip it: seeds by cost; the
+def plan(choice: dict, study, thin: bool = True):
+    """The combination's study as run, or None to skip it: seeds by cost
+    (unless ``thin`` is False: the study file gave each level's seeds); the
     per-point readings on the random disk up to PER_POINT_UP_TO; the
     triangular disk up to TRIANGULAR_UP_TO."""
     n_disk = choice["n_disk"]
     lattices = tuple(study.lattices)
+    samples = study.samples
     if choice["limit"] == "smooth":
         if n_disk > SMOOTH_UP_TO:
             return None
-        return replace(study, samples=min(study.samples, SMOOTH_SAMPLES))
+        return replace(study, samples=min(samples, SMOOTH_SAMPLES) if thin else samples)
     if choice["limit"] in COUPLED:
-        return replace(study, samples=coupled_samples_at(n_disk, study.samples))
+        return replace(study, samples=coupled_samples_at(n_disk, samples) if thin else samples)
     if choice["limit"] != "continuum":
         if n_disk > PER_POINT_UP_TO:
             return None
@@ -124,7 +126,9 @@ def plan(choice: dict, study):
         lattices = tuple(x for x in lattices if x != "triangular")
     if not lattices:
         return None
-    return replace(study, lattices=lattices, samples=samples_at(n_disk, study.samples))
+    return replace(
+        study, lattices=lattices, samples=samples_at(n_disk, samples) if thin else samples
+    )
 
 
 RESAMPLES = 200

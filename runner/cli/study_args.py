@@ -160,10 +160,13 @@ def differences(keys: list[str], before: dict, after: dict, then: str, now: str)
     return told
 
 
-def file_changed(source: dict | None, said: dict, extend: bool, name: str, file) -> dict:
+def file_changed(
+    source: dict | None, said: dict, extend: bool, name: str, file, ran: int | None = None
+) -> dict:
     """What a study file changed since its study was first run (``source``,
     recorded in study.json) that --extend lets it change: more samples or
-    lattices, as {field: value}.
+    lattices, as {field: value}. Samples grow if no fewer than the study
+    ran (``ran``, where a resolution kind ran fewer than its file said).
 
     Raises
     ------
@@ -180,7 +183,7 @@ def file_changed(source: dict | None, said: dict, extend: bool, name: str, file)
     source = {**source, "options": {**before, **source.get("options", {})}}
     differ = [key for key in said if said[key] != source.get(key)]
     grows = {
-        "samples": said["samples"] >= source.get("samples", 0),
+        "samples": said["samples"] >= (ran if ran is not None else source.get("samples", 0)),
         "lattices": set(source.get("lattices", ())) <= set(said["lattices"]),
     }
     refused = [k for k in differ if not (extend and k in EXTENDABLE and grows[k])]
@@ -204,4 +207,5 @@ def check_source(study: Study, file, extend: bool = False) -> None:
     lattices); ``study.source`` is what the file says today."""
     record = study.folder / "study.json"
     if record.exists() and study.source is not None:
-        file_changed(Study.from_json(record).source, study.source, extend, study.name, file)
+        recorded = Study.from_json(record)
+        file_changed(recorded.source, study.source, extend, study.name, file, recorded.samples)

@@ -29,6 +29,10 @@ runs/<name>/impacts.csv (whose columns record every reading and run option).
     [scene]
     wall_ka = [1.0, 10.0]            # two studies: <name>_wall_ka-1, <name>_wall_ka-10
 
+A resolution study may give ``[grid] samples`` as a list, the seeds of each
+``[scene] n_disk`` value in order (``samples = [476, 80, 48]`` with
+``n_disk = [800, 1600, 3200]``): a multilevel allocation's seeds per level.
+
 ``sweep = "one-at-a-time"`` instead of the default ``"cross"`` runs each axis's
 values with the other axes at their base, each axis's first value (a 1-D
 sweep around one point). ``[scene] wall = "1600_10ka_sides"`` and ``model =
@@ -113,6 +117,8 @@ class StudyFile:
     sweep: str = "cross"  # of SWEEPS
     rerun: dict = field(default_factory=dict)  # [rerun], for a readings kind
     named: dict = field(default_factory=dict)  # wall/model names given as one value
+    # n_disk -> seeds, where [grid] samples is a list (samples_by_level); {} else
+    level_samples: dict = field(default_factory=dict)
     path: Path | None = field(default=None, compare=False)  # the file read
 
     @property
@@ -198,6 +204,7 @@ def read_study_file(path: Path) -> StudyFile:
     }
     values: dict = {}
     axes: dict = {}
+    level_samples: tuple[int, ...] = ()
     for section in ("grid", "scene", "run"):
         table = data.get(section, {})
         if not isinstance(table, dict):
@@ -219,6 +226,12 @@ def read_study_file(path: Path) -> StudyFile:
                         )
             elif key in LISTS:
                 VALUES[section][key].check(where, value)
+            elif (section, key) == ("grid", "samples") and isinstance(value, list):
+                # seeds per level of a resolution study (level_samples)
+                for each in value:
+                    VALUES[section][key].check(where, each)
+                level_samples = tuple(value)
+                value = max(value, default=1)
             elif isinstance(value, list):
                 if section == "grid" and key not in GRID_AXES:
                     raise InputError(f"{where} must be one value, got {value!r}")
@@ -281,6 +294,7 @@ def read_study_file(path: Path) -> StudyFile:
     except TypeError as error:
         raise InputError(f"{path}: {error}") from None
     axes = {key: values for (section, key), values in axes.items()}
+    levels = samples_by_level(path, level_samples, axes, kind)
     if sections and study.speeds:
         raise InputError(f"{path}: sections are a results page's; a study of speeds has its own")
     named = {k: v for k, v in named.items() if k not in axes}
@@ -290,8 +304,23 @@ def read_study_file(path: Path) -> StudyFile:
             f"got {rerun['samples']}"
         )
     return StudyFile(
-        study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named, path
+        study, page, axes, tuple(readings), tuple(sections), kind, sweep, rerun, named, levels, path
     )
+
+
+def samples_by_level(path: Path, counts: tuple[int, ...], axes: dict, kind: str) -> dict:
+    """[grid] samples given as a list: the seeds of each [scene] n_disk value,
+    in order (a resolution study's levels, as a multilevel allocation asks
+    them), as n_disk -> seeds; {} for one count."""
+    if not counts:
+        return {}
+    n_disk = axes.get("n_disk", ())
+    if kind != "resolution" or len(n_disk) != len(counts):
+        raise InputError(
+            f"{path}: [grid] samples as a list gives the seeds of each [scene] n_disk value "
+            f"of a resolution study, as many as n_disk has ({len(n_disk)}), got {list(counts)!r}"
+        )
+    return dict(zip(n_disk, counts, strict=True))
 
 
 def read_rerun(path: Path, table, kind: str) -> dict:
@@ -400,6 +429,8 @@ def study_file_text(described: StudyFile) -> str:
         if option.name in ("name", "options", "source") or option.name in covered:
             continue
         value = axes.get(option.name, getattr(study, option.name))
+        if option.name == "samples" and described.level_samples:
+            value = list(described.level_samples.values())
         if option.name in axes or value != getattr(default, option.name):
             section = "grid" if option.name in GRID else "scene"
             sections[section].append(f"{option.name} = {toml_value(value)}")

@@ -121,11 +121,18 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
     setup = setup_of(name, described)
     out = tables_folder(name, described, args.docs)
     studies = axis_studies(described.study, described.axes, name, described.sweep)
+    levels = described.level_samples  # seeds per n_disk, where the file lists them
+    if levels:
+        studies = [
+            replace(s, samples=levels[c["n_disk"]])
+            for c, s in zip(setup.choices, studies, strict=True)
+        ]
     # each combination's grid as the file gives it, which its study.json keeps
     studies = [replace(study, source=study.grid()) for study in studies]
     pairs = list(zip(setup.choices, studies, strict=True))
     if hasattr(module, "plan"):  # the kind thins its grid (fewer seeds where impacts cost more)
-        pairs = [(c, planned) for c, s in pairs if (planned := module.plan(c, s)) is not None]
+        thin = {"thin": False} if levels else {}  # the file's seeds per level, as given
+        pairs = [(c, p) for c, s in pairs if (p := module.plan(c, s, **thin)) is not None]
     by_label = {module.label(c): (c, s) for c, s in pairs}
     rerun = described.rerun
     for _, study in by_label.values():  # every study the run may make, before the first starts

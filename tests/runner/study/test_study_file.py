@@ -60,7 +60,16 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("[grid]\nfoo = 1\n", "[grid] has no option 'foo'"),
         ("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
         ("[walls]\n", "'walls' is not a section"),
-        ("[grid]\nsamples = [1, 2]\n", "[grid] samples must be one value"),
+        ("[grid]\nsamples = [1, 2]\n", "[grid] samples as a list gives the seeds of each "),
+        (
+            'kind = "resolution"\n[grid]\nsamples = [8, 4, 2]\n[scene]\nn_disk = [800, 1600]\n'
+            'limit = ["profile-floor"]\n',
+            "as many as n_disk has \\(2\\), got [8, 4, 2]",
+        ),
+        (
+            'kind = "resolution"\n[grid]\nsamples = [8, 0]\n[scene]\nn_disk = [800, 1600]\n',
+            "[grid] samples must be .*got 0",
+        ),
         ("[scene]\nwall_ka = [1.0, 1.0]\n", "an axis needs values distinct"),
         ("[scene]\nwall_ka = [1, 1.0]\n", "distinct in their folder names \\(1, 1\\)"),
         ("[scene]\nwall_ka = []\n", "an axis needs values distinct"),
@@ -270,3 +279,29 @@ def test_a_page_has_the_sections_its_file_names(tmp_path):
     headings = [x for x in page.read_text().splitlines() if x.startswith("## ")]
     assert headings[:2] == ["## Fits", "## The paper's claims"]
     assert "## What the errors are" not in headings and "## Model-free measures" not in headings
+
+
+def test_a_resolution_file_gives_seeds_per_level(tmp_path):
+    """[grid] samples as a list: the seeds of each n_disk, in order; the
+    study's samples the largest (its checks); the file written back reads
+    the same; each level's study runs its own count, unthinned."""
+    from analysis.kinds.resolution import plan
+    from runner.study.file import axis_studies, combinations, study_file_text
+
+    path = tmp_path / "levels.toml"
+    path.write_text(
+        'kind = "resolution"\n[grid]\nlattices = ["random"]\nsamples = [40, 8, 3]\n'
+        '[scene]\nn_disk = [800, 1600, 3200]\nlimit = ["profile-floor"]\n'
+    )
+    described = read_study_file(path)
+    assert described.level_samples == {800: 40, 1600: 8, 3200: 3}
+    assert described.study.samples == 40
+    path.write_text(study_file_text(described))
+    assert read_study_file(path) == described
+    choices = combinations(described.axes, described.sweep)
+    studies = axis_studies(described.study, described.axes, "levels", described.sweep)
+    seeds = [
+        plan(c, replace(s, samples=described.level_samples[c["n_disk"]]), thin=False).samples
+        for c, s in zip(choices, studies, strict=True)
+    ]
+    assert seeds == [40, 8, 3]
