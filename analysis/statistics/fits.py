@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares, minimize_scalar
+from scipy.optimize import brentq, least_squares, minimize_scalar
 
 from ..theory.tangential import Compliant, compliant_beta, walton_beta
 from .seeds import SeedTable
@@ -91,13 +91,28 @@ def _e(data: Means, e: float | None) -> np.ndarray:
 
 
 # Both models are piecewise in psi (a kink where sliding gives way to
-# sticking), so the cost has local minima in mu: the local fit starts from the
-# best of a coarse grid of mu.
-MU_GRID = np.geomspace(1e-3, 3.0, 25)
+# sticking), so the cost has local minima: Walton's fit starts from the best
+# point of a grid over (mu, beta0), evaluated at once. The grid's mu reaches
+# the fit's bound MU_HIGH, where a plateau at every angle leaves mu free.
+MU_HIGH = 5.0
+MU_GRID = np.concatenate([[0.0], np.geomspace(1e-3, MU_HIGH, 60)])
+BETA0_GRID = np.linspace(-1.5, 1.5, 121)
+
+
+def walton_costs(
+    data: Means, K: float, mu, beta0, e: float | None = None, weighted: bool = True
+) -> np.ndarray:
+    """The cost (sum of squared residuals, weighted as ``fit_walton``
+    weighs them) of Walton's model at every (mu, beta0) of two arrays, as a
+    (len(mu), len(beta0)) array."""
+    mu, beta0 = np.asarray(mu, float), np.asarray(beta0, float)
+    model = walton_beta(data.psi, _e(data, e), mu[:, None, None], beta0[None, :, None], K)
+    return np.sum(((model - data.beta) / _scale(data, weighted)) ** 2, axis=-1)
 
 
 def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = True) -> np.ndarray:
-    """(mu, beta0) of Walton's model by least squares on the per-angle means.
+    """(mu, beta0) of Walton's model by least squares on the per-angle means,
+    from the best point of the grid (MU_GRID x BETA0_GRID).
 
     Parameters
     ----------
@@ -120,10 +135,60 @@ def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = T
     def residuals(p):
         return (walton_beta(data.psi, e_values, p[0], p[1], K) - data.beta) / scale
 
-    # beta of single impacts can pass 1 (near-normal, tiny tangential velocity)
-    beta0 = float(np.clip(np.max(data.beta), -1.4, 1.4))
-    mu = min(MU_GRID, key=lambda m: np.sum(residuals([m, beta0]) ** 2))
-    return least_squares(residuals, [mu, beta0], bounds=([0.0, -1.5], [5.0, 1.5])).x
+    costs = walton_costs(data, K, MU_GRID, BETA0_GRID, e, weighted)
+    i, j = np.unravel_index(np.argmin(costs), costs.shape)
+    start = [MU_GRID[i], BETA0_GRID[j]]
+    return least_squares(residuals, start, bounds=([0.0, -1.5], [MU_HIGH, 1.5])).x
+
+
+def walton_profile(
+    data: Means, K: float, mu: float, e: float | None = None, weighted: bool = True
+) -> float:
+    """The least cost of Walton's model at a fixed ``mu`` over beta0: the
+    best of BETA0_GRID, refined by a bounded search around it (the cost is
+    piecewise quadratic in beta0, not convex)."""
+    e_values, scale = _e(data, e), _scale(data, weighted)
+
+    def cost(beta0: float) -> float:
+        model = walton_beta(data.psi, e_values, mu, beta0, K)
+        return float(np.sum(((model - data.beta) / scale) ** 2))
+
+    costs = walton_costs(data, K, [mu], BETA0_GRID, e, weighted)[0]
+    best, step = BETA0_GRID[np.argmin(costs)], BETA0_GRID[1] - BETA0_GRID[0]
+    bounds = (max(best - step, BETA0_GRID[0]), min(best + step, BETA0_GRID[-1]))
+    return min(float(costs.min()), minimize_scalar(cost, bounds=bounds, method="bounded").fun)
+
+
+def walton_mu_bounds(
+    data: Means, K: float, e: float | None = None, weighted: bool = True, rise: float = 1.0
+) -> tuple[float, float]:
+    """The mu that Walton's fit allows: those whose profile cost
+    (``walton_profile``) is within ``rise`` of the least, as (lowest,
+    highest), on MU_GRID and the fit's own mu, refined at the edges. The
+    highest is infinite where mu at the fit's bound (MU_HIGH) fits as well:
+    no angle is then on the sliding branch, beta is on its plateau
+    throughout, and the data bound mu from below only (it is not
+    identified). With weights by the standard errors (the measured way),
+    ``rise`` 1 gives the profile's one-sigma interval, the angles taken as
+    independent (a gauge of the width; whether mu is bounded above does not
+    depend on it)."""
+    # the fit's own mu besides the grid: its minimum may be narrower than the grid's steps
+    grid = np.union1d(MU_GRID, [fit_walton(data, K, e, weighted)[0]])
+    costs = np.array([walton_profile(data, K, m, e, weighted) for m in grid])
+    level = costs.min() + rise
+    inside = np.flatnonzero(costs <= level)
+
+    def edge(outside: int, within: int) -> float:
+        """Where the profile crosses ``level`` between two grid points."""
+        low, high = sorted((grid[outside], grid[within]))
+        return float(
+            brentq(lambda m: walton_profile(data, K, m, e, weighted) - level, low, high, xtol=1e-5)
+        )
+
+    first, last = inside[0], inside[-1]
+    low = 0.0 if first == 0 else edge(first - 1, first)
+    high = np.inf if last == len(grid) - 1 else edge(last + 1, last)
+    return low, high
 
 
 def compliant_curve(data: Means, mu: float, nu: float, alpha: float, e=None) -> np.ndarray:
