@@ -5,6 +5,7 @@ between resolutions, the multilevel plan and each reading against N."""
 from __future__ import annotations
 
 import csv
+import math
 from pathlib import Path
 
 from analysis.kinds.resolution import FITTED, QUANTITIES, order
@@ -37,6 +38,13 @@ def limit_text(found: dict) -> str:
         return f"not converged at N = {found['halvings']['finest']:,}"
     if status == "no form":
         return "undecided: no form describes the levels"
+    if status == "not identified":
+        levels = ", ".join(f"{n:,}" for n, _ in found["open_above"])
+        lows = [low for _, low in found["open_above"]]
+        return (
+            f"not identified: no upper bound at N = {levels} (beta on its plateau at every "
+            f"angle; mu >= {min(lows):.3f} to {max(lows):.3f})"
+        )
     return "too few levels from 800 points"
 
 
@@ -91,7 +99,12 @@ def claims_markdown(table: list[dict]) -> str:
         cells = [row["claim"]]
         for n in ns:
             cell = row["cells"].get(n)
-            cells.append(f"{cell['verdict']} ({pm(cell['value'], cell['error'])})" if cell else "-")
+            if cell and cell.get("note"):
+                cells.append(f"{cell['verdict']} ({cell['note']}, no upper bound)")
+            else:
+                cells.append(
+                    f"{cell['verdict']} ({pm(cell['value'], cell['error'])})" if cell else "-"
+                )
         limit = row["limit"]
         cells.append(
             f"{limit['verdict']} ({pm(limit['value'], limit['error'])})"
@@ -158,7 +171,10 @@ def level_rows(
         for q, _ in QUANTITIES:
             value = s["values"].get(q)
             text = pm(*value) if value else "-"
-            if q in FITTED and value:
+            bounds = s.get("mu_bounds", {}).get("measured")
+            if q == "mu" and value and bounds and math.isinf(bounds[1]):
+                text = f">= {bounds[0]:.3f} (no upper bound; fit {value[0]:.3f})"
+            elif q in FITTED and value:
                 text += f" +- {s['systematic'][q]:.3f} sys"
             cells.append(text)
         chi2 = s.get("chi2")

@@ -24,8 +24,10 @@ import numpy as np
 from builder.study_names import LIMITS
 
 from ..statistics import extrapolation, levels
-from ..statistics.estimates import study_estimates
+from ..statistics.estimates import PAPER, lattice_constants, study_estimates
+from ..statistics.fits import means, walton_mu_bounds
 from ..statistics.measures import GRAZING_ANGLES
+from ..statistics.seeds import seed_tables
 from .readings import Setup
 
 COLUMNS = (
@@ -236,8 +238,44 @@ def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
             entry["systematic"] = walton["systematic"]
             entry["chi2"] = {way: walton[way]["chi2"] for way in ("measured", "paper")}
             entry["errors"] = fits["errors"]
+            entry["mu_bounds"] = mu_bounds(done, lattice)
         out[(limit, lattice, n_disk)] = entry
     return out
+
+
+def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
+    """Walton's mu that a level's per-angle means allow, both ways
+    (``analysis.statistics.fits.walton_mu_bounds``, within one unit of chi^2
+    of the best, the means weighted by their errors: what the data can tell
+    apart, also for the paper's unweighted way); infinite above where beta is
+    on its plateau at every angle."""
+    data = means(seed_tables(done)[lattice])
+    K = lattice_constants(done, lattice)[2]
+    return {
+        "measured": walton_mu_bounds(data, K),
+        "paper": walton_mu_bounds(data, PAPER["K"], PAPER["e"]),
+    }
+
+
+# Walton's mu, each way: where a level's data bound it from below only, no
+# limit is sought.
+MU_WAYS = {"mu": "measured", "mu_paper": "paper"}
+
+
+def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list[tuple]:
+    """[(N, lowest mu)] of the fitted levels whose data leave ``quantity``
+    (MU_WAYS) without an upper bound."""
+    if quantity not in MU_WAYS:
+        return []
+    return [
+        (n, entry["mu_bounds"][MU_WAYS[quantity]][0])
+        for (li, la, n), entry in sorted(summary.items())
+        if (li, la) == (limit, lattice)
+        and n >= extrapolation.FIT_FROM
+        and not entry["excluded"]
+        and "mu_bounds" in entry
+        and np.isinf(entry["mu_bounds"][MU_WAYS[quantity]][1])
+    ]
 
 
 def levels_of(summary: dict, limit: str, lattice: str, quantity: str, fitted_only: bool = True):
@@ -283,6 +321,16 @@ def limits(
                     d["variance_ratio"] < 1 for d in differences if d["n"] > extrapolation.FIT_FROM
                 )
             found, covariance = levels_of(summary, limit, lattice, q), None
+            if open_above := unidentified(summary, limit, lattice, q):
+                # the fit's value is wherever its search stopped in a flat valley
+                out[(limit, lattice, q)] = {
+                    "status": "not identified",
+                    "levels": [n for n, _, _ in found if n >= extrapolation.FIT_FROM],
+                    "forms": {},
+                    "halvings": None,
+                    "open_above": open_above,
+                }
+                continue
             if pays:
                 found, covariance = coupled_levels(found, steps)
             out[(limit, lattice, q)] = extrapolation.limit(found, steps, seeds, covariance)
@@ -374,6 +422,8 @@ def multilevel(rows: list[dict], summary: dict, limit: str, lattice: str) -> dic
         return levels.variance_per_seed(entry["values"][q][1], entry["seeds"])
 
     for q, target in TARGETS.items():
+        if unidentified(summary, limit, lattice, q):  # no error to allocate for
+            continue
         variances, costs = [per_seed(q, chain[0])], [cost[chain[0]] / unit]
         measured = {d["n"]: d["sd_difference"] ** 2 for d in differences["e_normal"]}
         for n in chain[1:]:

@@ -16,6 +16,10 @@ every level and in the limit N -> infinity:
   with too few levels or no form that describes it is "undecided", never
   judged;
 - a level left out of the fits (analysis.kinds.resolution.excluded) is not judged;
+- Walton's mu where a level's data bound it from below only (beta on its
+  plateau at every angle: ``mu_bounds``) misses if that lower bound lies
+  beyond the claim's range and is undecided otherwise; in the limit it is
+  undecided ("not identified");
 - "x > 1" (the grazing peak) meets if the interval x +- 2 errors lies above
   1, misses if below, and is undecided otherwise.
 """
@@ -114,7 +118,11 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
     with ``systematic`` (a fit's fitting-choice error) added in quadrature."""
     if not found or found["status"] != "limit":
         status = found["status"] if found else "too few"
-        why = {"too few": "too few levels", "no form": "no form describes the levels"}.get(status)
+        why = {
+            "too few": "too few levels",
+            "no form": "no form describes the levels",
+            "not identified": "not identified: no upper bound on mu",
+        }.get(status)
         if status == "not converged":
             why = f"not converged at {found['halvings']['finest']:,}"
         return {"value": None, "error": None, "verdict": f"undecided ({why})"}
@@ -124,6 +132,17 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
         "error": error,
         "verdict": judge(found["value"], error, claim),
     }
+
+
+def open_above(entry: dict, way: str | None, claim: tuple) -> dict | None:
+    """A Walton mu claim's cell at a level whose data bound mu from below
+    only (module docstring), or None where the fit bounds it."""
+    bounds = entry.get("mu_bounds", {}).get(way)
+    if not bounds or not math.isinf(bounds[1]) or not claim[2].startswith("mu"):
+        return None
+    _, _, _, paper, near, _ = claim
+    verdict = "misses" if bounds[0] > paper + near else "undecided"
+    return {"value": None, "error": None, "verdict": verdict, "note": f"mu >= {bounds[0]:.3f}"}
 
 
 def finest_systematic(
@@ -161,6 +180,11 @@ def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
         for n in ns:
             entry = summary.get((reading, lattice, n))
             found = level_error(entry, quantity, way) if entry else None
+            if found and (bound := open_above(entry, way, claim)):
+                cells[n] = {**bound, "excluded": entry["excluded"]}
+                if entry["excluded"]:
+                    cells[n]["verdict"] = "not judged"
+                continue
             cells[n] = (
                 {
                     "value": found[0],

@@ -116,3 +116,21 @@ def test_readings_come_in_their_declared_order_whatever_the_hashing():
         for seed in (1, 2, 3, 4)
     }
     assert len(runs) == 1
+
+
+def test_a_mu_the_data_bound_from_below_only_is_judged_by_its_bound():
+    """A level whose beta stays on its plateau (mu_bounds infinite above):
+    the fit's value (0.12 +- 0.01, which would miss 0.18) is not judged;
+    its lower bound decides a miss only where it lies beyond the claim's
+    range; in the limit such a mu is undecided."""
+    summary = {("r", "random", n): entry(16) for n in (800, 1600, 3200)}
+    summary[("r", "random", 800)]["mu_bounds"] = {"paper": (0.02, math.inf)}
+    summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.40, math.inf)}
+    summary[("r", "random", 3200)]["mu_bounds"] = {"paper": (0.11, 0.13)}
+    mu = next(c for c in claims_table(summary, {}, "r") if c["claim"] == MU[0])
+    assert (mu["cells"][800]["verdict"], mu["cells"][800]["note"]) == ("undecided", "mu >= 0.020")
+    assert mu["cells"][1600]["verdict"] == "misses"
+    # bounded: judged by its value +- error as before (0.12 +- 0.02 reaches 0.13)
+    assert "note" not in mu["cells"][3200] and mu["cells"][3200]["verdict"] == "undecided"
+    found = {"status": "not identified", "open_above": [(800, 0.02)]}
+    assert limit_verdict(found, MU)["verdict"] == "undecided (not identified: no upper bound on mu)"

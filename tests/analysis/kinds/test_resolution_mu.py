@@ -1,0 +1,33 @@
+"""Walton's mu in the resolution kind (analysis/kinds/resolution.py): a
+level's data that bound mu from below only give no limit, and levels that
+bound it are extrapolated."""
+
+from __future__ import annotations
+
+import math
+
+from analysis.kinds.resolution import limits, unidentified
+
+
+def level(mu: float, high: float) -> dict:
+    return {
+        "seeds": 16,
+        "excluded": None,
+        "values": {"mu": (mu, 0.01)},
+        "mu_bounds": {"measured": (mu - 0.02, high), "paper": (0.0, 0.1)},
+    }
+
+
+def test_a_mu_without_upper_bound_at_any_level_has_no_limit():
+    """The fit's values fall exactly on a line in h (a limit the forms would
+    find), yet one level's data leave mu open above: not identified."""
+    ns = (800, 1600, 3200, 6400)
+    summary = {("r", "random", n): level(0.1 + 0.05 * math.sqrt(800 / n), 0.5) for n in ns}
+    found = limits(summary, ("mu",))[("r", "random", "mu")]
+    assert found["status"] == "limit"
+    assert abs(found["forms"]["h"]["limit"] - 0.1) < 1e-6
+    summary[("r", "random", 3200)]["mu_bounds"]["measured"] = (0.11, math.inf)
+    assert unidentified(summary, "r", "random", "mu") == [(3200, 0.11)]
+    assert unidentified(summary, "r", "random", "mu_paper") == []
+    found = limits(summary, ("mu",))[("r", "random", "mu")]
+    assert found["status"] == "not identified" and found["open_above"] == [(3200, 0.11)]
