@@ -190,7 +190,8 @@ def page(found: dict, study: str) -> str:
         "(each level as (c) gives it), so (c)'s bias is small by construction; (b) "
         "extrapolates the levels as measured, each on its own seeds (for mu, (b) at the "
         "finest level is Q_limit itself). A bias smaller than Q_limit's own errors is "
-        "not told from zero.",
+        "not told from zero. A quantity the page gives no limit (Walton's mu where the "
+        "data bound it from below only: not identified) has no error to measure.",
     ]
     for q, label in resolution.QUANTITIES:
         if q not in found:
@@ -255,7 +256,8 @@ def draw(found: dict, path: Path) -> None:
                 )
         ax.axhline(entry_["target"], color="grey", lw=0.8, ls="--")
         ax.set(xlabel="LAMMPS seconds (loaded machine)", ylabel="error against the limit", title=q)
-        ax.legend()
+        if entry_["rows"]:  # a quantity with no limit (mu not identified) has none
+            ax.legend()
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
