@@ -21,6 +21,7 @@
 #include "fix_area_barrier.h"
 
 #include "angle_area_barrier.h"
+#include "comm.h"
 #include "error.h"
 #include "force.h"
 
@@ -78,8 +79,13 @@ void FixAreaBarrier::end_of_step()
 void FixAreaBarrier::tally()
 {
   const double local = (double) barrier->nbarrier;
-  MPI_Allreduce(&local, &now, 1, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(&barrier->jmin, &jmin_now, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (comm->nprocs == 1) {    // every step: no reduction where one rank holds all
+    now = local;
+    jmin_now = barrier->jmin;
+  } else {
+    MPI_Allreduce(&local, &now, 1, MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(&barrier->jmin, &jmin_now, 1, MPI_DOUBLE, MPI_MIN, world);
+  }
   if (now > most) most = now;
   if (jmin_now < jmin) jmin = jmin_now;
 }

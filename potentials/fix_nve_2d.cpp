@@ -40,6 +40,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include <cstring>
+
 using namespace LAMMPS_NS;
 
 namespace {
@@ -109,6 +111,18 @@ FixNVE2d::~FixNVE2d()
 }
 
 /* ----------------------------------------------------------------------
+   true for an end-of-step fix that may read x or v; fix area/barrier reads
+   the angle style's counts only, and acts every step: counted, it would
+   never let a closing half kick be deferred
+------------------------------------------------------------------------- */
+
+bool FixNVE2d::reads_atoms(Fix *fix)
+{
+  if (!(fix->setmask() & FixConst::END_OF_STEP)) return false;
+  return strcmp(fix->style, "area/barrier") != 0;
+}
+
+/* ----------------------------------------------------------------------
    the end-of-step fixes of this run and how often each acts
 ------------------------------------------------------------------------- */
 
@@ -119,11 +133,11 @@ void FixNVE2d::init()
   every = nullptr;
   nevery_fixes = 0;
   for (int i = 0; i < modify->nfix; i++)
-    if (modify->fix[i]->setmask() & FixConst::END_OF_STEP) nevery_fixes++;
+    if (reads_atoms(modify->fix[i])) nevery_fixes++;
   if (nevery_fixes) memory->create(every, nevery_fixes, "nve/2d:every");
   int n = 0;
   for (int i = 0; i < modify->nfix; i++)
-    if (modify->fix[i]->setmask() & FixConst::END_OF_STEP) every[n++] = modify->fix[i]->nevery;
+    if (reads_atoms(modify->fix[i])) every[n++] = modify->fix[i]->nevery;
   pending = false;
   // rRESPA calls final_integrate at every inner level: never deferred there
   fuse = !utils::strmatch(update->integrate_style, "^respa");

@@ -42,6 +42,7 @@ class FixNVE2d : public FixNVE {
   bool fuse;            // may defer it (velocity Verlet, not rRESPA)
 
   void set_dtfm();
+  static bool reads_atoms(Fix *fix);
   bool velocities_read(bigint step) const;
   void move_atoms(int kicks, bool drift);
 };
