@@ -52,6 +52,7 @@ from bench.common import (
 from bench.resolution_cost import SIZE, scaled_settings, spec_at
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
+from builder.scene import SceneSpec
 from ground.errors import InputError
 from ground.launch import LammpsError
 from runner.impact import run_scene
@@ -112,9 +113,23 @@ def parser() -> argparse.ArgumentParser:
         "--two-rank-sizes", type=SIZE, nargs="+", default=None,
         help="the sizes run on more than one rank, among --sizes (default: all of them)",
     )  # fmt: skip
+    parser.add_argument(
+        "--body", action="store_true",
+        help="the default body (the scene's defaults: one continuous surface, L 0.2 R, the "
+        "area barrier) instead of the continuum reading at 0.048 R; the page loop_rate_body",
+    )  # fmt: skip
     add_repeats(parser, 3, "runs of each setting and rank count, interleaved")
     add_scene_pick(parser)
     return parser
+
+
+def scene_at(n: int, gamma: float, seed: int, body: bool) -> tuple[SceneSpec, float]:
+    """The scene of N disk points and its step (dt auto): the continuum
+    reading of bench/resolution_cost.py, or (``body``) the default body."""
+    if body:
+        spec = SceneSpec(n_disk=n, gamma_deg=gamma, seed=seed)
+        return spec, RunOptions().for_scene(spec).dt
+    return spec_at(n, gamma, seed), scaled_settings(n)[0]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -123,7 +138,7 @@ def main(argv: list[str] | None = None) -> int:
         distinct("--sizes", args.sizes)
         distinct("--ranks", args.ranks)
         for n in args.sizes:
-            spec_at(n, args.gamma, args.seed).validate()
+            scene_at(n, args.gamma, args.seed, args.body)[0].validate()
         many = args.sizes if args.two_rank_sizes is None else args.two_rank_sizes
         if not set(many) <= set(args.sizes):
             raise InputError("--two-rank-sizes must be among --sizes")
@@ -134,8 +149,8 @@ def main(argv: list[str] | None = None) -> int:
     for n in sizes:
         folder = RUNS / "loop_rate" / f"n{n}"
         shutil.rmtree(folder, ignore_errors=True)
-        write_scene(build_scene(spec_at(n, args.gamma, args.seed)), folder)
-        dt = scaled_settings(n)[0]
+        spec, dt = scene_at(n, args.gamma, args.seed, args.body)
+        write_scene(build_scene(spec), folder)
         ranks = [r for r in args.ranks if r == 1 or n in many]
         load = os.getloadavg()[0]
         done: dict[tuple[int, str], list[dict]] = {(r, s): [] for r in ranks for s in SETTINGS}
@@ -165,8 +180,14 @@ def main(argv: list[str] | None = None) -> int:
                 return 1
         print(rows[-1], flush=True)
     body = (
-        f"Random disk, seed {args.seed}, {args.gamma:g} degrees, 0.1 c, correlation length "
-        f"0.048 R, the scene's defaults; the runner's impact (dt auto, the study's stop "
+        f"Random disk, seed {args.seed}, {args.gamma:g} degrees, 0.1 c, "
+        + (
+            "the default body (the scene's defaults: one continuous surface, L 0.2 R, the area "
+            "barrier)"
+            if args.body
+            else "correlation length 0.048 R, the scene's defaults"
+        )
+        + "; the runner's impact (dt auto, the study's stop "
         f"rule) with LAMMPS's timer breakdown; medians of {args.repeats} runs, settings and "
         "rank counts interleaved. rate: atoms times steps over LAMMPS's loop time, in "
         "millions of atom-steps per second; Bond, Modify, Comm: shares of the loop "
@@ -213,11 +234,14 @@ def main(argv: list[str] | None = None) -> int:
         + ("" if args.two_rank_sizes is None
            else " --two-rank-sizes " + " ".join(map(str, args.two_rank_sizes)))
         + f" --repeats {args.repeats} --gamma {args.gamma:g} --seed {args.seed}"
-        + (" --docs" if args.docs else "")
+        + (" --body" if args.body else "") + (" --docs" if args.docs else "")
     )  # fmt: skip
     print(body)
     title = "LAMMPS's rate per atom-step against the resolution"
-    print(f"wrote {write_report('loop_rate', title, command, body, args.docs)}")
+    name = "loop_rate_body" if args.body else "loop_rate"
+    if args.body:
+        title += ": the default body"
+    print(f"wrote {write_report(name, title, command, body, args.docs)}")
     return 0
 
 
