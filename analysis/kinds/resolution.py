@@ -24,6 +24,7 @@ import numpy as np
 from builder.study_names import LIMITS
 
 from ..statistics import extrapolation, levels
+from ..statistics.claims import SAME
 from ..statistics.estimates import PAPER, lattice_constants, study_estimates
 from ..statistics.fits import means, walton_mu_bounds
 from ..statistics.measures import GRAZING_ANGLES
@@ -108,7 +109,8 @@ def coupled_samples_at(n_disk: int, samples: int) -> int:
 
 def plan(choice: dict, study, thin: bool = True):
     """The combination's study as run, or None to skip it: seeds by cost
-    (unless ``thin`` is False: the study file gave each level's seeds); the
+    (unless ``thin`` is False: the study file gave each level's seeds, which
+    every reading then runs as given, the smooth one too); the
     per-point readings on the random disk up to PER_POINT_UP_TO; the
     triangular disk up to TRIANGULAR_UP_TO."""
     n_disk = choice["n_disk"]
@@ -243,17 +245,22 @@ def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
     return out
 
 
+# The rise of chi^2 that bounds mu: two errors, as every claim is judged
+# (analysis.statistics.claims.SAME).
+MU_RISE = SAME**2
+
+
 def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
     """Walton's mu that a level's per-angle means allow, both ways
-    (``analysis.statistics.fits.walton_mu_bounds``, within one unit of chi^2
-    of the best, the means weighted by their errors: what the data can tell
-    apart, also for the paper's unweighted way); infinite above where beta is
-    on its plateau at every angle."""
+    (``analysis.statistics.fits.walton_mu_bounds``: within MU_RISE of the
+    least chi^2, the means weighted by their errors, which say what the data
+    can tell apart, also for the paper's unweighted way); infinite above
+    where beta is on its plateau at every angle."""
     data = means(seed_tables(done)[lattice])
     K = lattice_constants(done, lattice)[2]
     return {
-        "measured": walton_mu_bounds(data, K),
-        "paper": walton_mu_bounds(data, PAPER["K"], PAPER["e"]),
+        "measured": walton_mu_bounds(data, K, rise=MU_RISE),
+        "paper": walton_mu_bounds(data, PAPER["K"], PAPER["e"], rise=MU_RISE),
     }
 
 
@@ -264,7 +271,8 @@ MU_WAYS = {"mu": "measured", "mu_paper": "paper"}
 
 def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list[tuple]:
     """[(N, lowest mu)] of the fitted levels whose data leave ``quantity``
-    (MU_WAYS) without an upper bound."""
+    (MU_WAYS) without an upper bound. One such level withholds the limit,
+    however few the levels ("not identified" before "too few")."""
     if quantity not in MU_WAYS:
         return []
     return [

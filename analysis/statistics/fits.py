@@ -91,12 +91,15 @@ def _e(data: Means, e: float | None) -> np.ndarray:
 
 
 # Both models are piecewise in psi (a kink where sliding gives way to
-# sticking), so the cost has local minima: Walton's fit starts from the best
-# point of a grid over (mu, beta0), evaluated at once. The grid's mu reaches
-# the fit's bound MU_HIGH, where a plateau at every angle leaves mu free.
+# sticking), so the cost has local minima. Walton's fit starts from every
+# split of the angles into a sliding set (the smallest psi) and a plateau,
+# each solved in closed form, and from the best point of a grid over (mu,
+# beta0); it polishes the POLISH cheapest. The grid's mu reaches the fit's
+# bound MU_HIGH, where a plateau at every angle leaves mu free.
 MU_HIGH = 5.0
 MU_GRID = np.concatenate([[0.0], np.geomspace(1e-3, MU_HIGH, 60)])
 BETA0_GRID = np.linspace(-1.5, 1.5, 121)
+POLISH = 3
 
 
 def walton_costs(
@@ -112,7 +115,8 @@ def walton_costs(
 
 def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = True) -> np.ndarray:
     """(mu, beta0) of Walton's model by least squares on the per-angle means,
-    from the best point of the grid (MU_GRID x BETA0_GRID).
+    the best of the fits from the cheapest starts (``walton_splits`` and the
+    grid's best point, MU_GRID x BETA0_GRID).
 
     Parameters
     ----------
@@ -137,8 +141,38 @@ def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = T
 
     costs = walton_costs(data, K, MU_GRID, BETA0_GRID, e, weighted)
     i, j = np.unravel_index(np.argmin(costs), costs.shape)
-    start = [MU_GRID[i], BETA0_GRID[j]]
-    return least_squares(residuals, start, bounds=([0.0, -1.5], [MU_HIGH, 1.5])).x
+    starts = [*walton_splits(data, K, e, weighted), (MU_GRID[i], BETA0_GRID[j])]
+    cheapest = np.argsort([np.sum(residuals(p) ** 2) for p in starts])[:POLISH]
+    fits = [
+        least_squares(residuals, starts[k], bounds=([0.0, -1.5], [MU_HIGH, 1.5])) for k in cheapest
+    ]
+    return min(fits, key=lambda found: found.cost).x
+
+
+def walton_splits(
+    data: Means, K: float, e: float | None = None, weighted: bool = True
+) -> list[tuple[float, float]]:
+    """(mu, beta0) for every split of the angles into a sliding set, the s
+    smallest psi (beta + 1 = mu (1 + e) K psi, least squares through the
+    origin), and a plateau, the others (beta0 their weighted mean); mu and
+    beta0 clipped to the fit's bounds, a split with no sliding angle at mu =
+    MU_HIGH, one with no plateau at beta0 = 1.5."""
+    order = np.argsort(data.psi)
+    slope = ((1.0 + _e(data, e)) * K * data.psi)[order]
+    beta = data.beta[order]
+    weight = 1.0 / _scale(data, weighted)[order] ** 2
+    out = []
+    for s in range(len(beta) + 1):
+        sliding, plateau = slice(0, s), slice(s, None)
+        mu = (
+            np.sum(weight[sliding] * slope[sliding] * (beta[sliding] + 1.0))
+            / np.sum(weight[sliding] * slope[sliding] ** 2)
+            if s
+            else MU_HIGH
+        )
+        beta0 = np.average(beta[plateau], weights=weight[plateau]) if s < len(beta) else 1.5
+        out.append((float(np.clip(mu, 0.0, MU_HIGH)), float(np.clip(beta0, -1.5, 1.5))))
+    return out
 
 
 def walton_profile(
@@ -169,9 +203,11 @@ def walton_mu_bounds(
     no angle is then on the sliding branch, beta is on its plateau
     throughout, and the data bound mu from below only (it is not
     identified). With weights by the standard errors (the measured way),
-    ``rise`` 1 gives the profile's one-sigma interval, the angles taken as
-    independent (a gauge of the width; whether mu is bounded above does not
-    depend on it)."""
+    ``rise`` 1 gives the profile's one-sigma interval and 4 its two-sigma
+    one, the angles taken as independent (a gauge of the width). Where beta
+    is on its plateau at every angle the profile is flat above the lower
+    bound, whatever the rise; where the data show a faint sliding branch, a
+    larger rise may leave mu unbounded."""
     # the fit's own mu besides the grid: its minimum may be narrower than the grid's steps
     grid = np.union1d(MU_GRID, [fit_walton(data, K, e, weighted)[0]])
     costs = np.array([walton_profile(data, K, m, e, weighted) for m in grid])

@@ -138,7 +138,7 @@ def open_above(entry: dict, way: str | None, claim: tuple) -> dict | None:
     """A Walton mu claim's cell at a level whose data bound mu from below
     only (module docstring), or None where the fit bounds it."""
     bounds = entry.get("mu_bounds", {}).get(way)
-    if not bounds or not math.isinf(bounds[1]) or not claim[2].startswith("mu"):
+    if not bounds or not math.isinf(bounds[1]) or claim[2] not in ("mu", "mu_paper"):
         return None
     _, _, _, paper, near, _ = claim
     verdict = "misses" if bounds[0] > paper + near else "undecided"

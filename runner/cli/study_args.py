@@ -165,8 +165,8 @@ def file_changed(
 ) -> dict:
     """What a study file changed since its study was first run (``source``,
     recorded in study.json) that --extend lets it change: more samples or
-    lattices, as {field: value}. Samples grow if no fewer than the study
-    ran (``ran``, where a resolution kind ran fewer than its file said).
+    lattices, as {field: value}. Samples grow if no fewer than the file
+    said before nor than the study ran (``ran``).
 
     Raises
     ------
@@ -183,7 +183,7 @@ def file_changed(
     source = {**source, "options": {**before, **source.get("options", {})}}
     differ = [key for key in said if said[key] != source.get(key)]
     grows = {
-        "samples": said["samples"] >= (ran if ran is not None else source.get("samples", 0)),
+        "samples": said["samples"] >= max(source.get("samples", 0), ran or 0),
         "lattices": set(source.get("lattices", ())) <= set(said["lattices"]),
     }
     refused = [k for k in differ if not (extend and k in EXTENDABLE and grows[k])]

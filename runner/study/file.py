@@ -228,6 +228,8 @@ def read_study_file(path: Path) -> StudyFile:
                 VALUES[section][key].check(where, value)
             elif (section, key) == ("grid", "samples") and isinstance(value, list):
                 # seeds per level of a resolution study (level_samples)
+                if not value:
+                    raise InputError(f"{where} must be a count or a list of counts, got []")
                 for each in value:
                     VALUES[section][key].check(where, each)
                 level_samples = tuple(value)

@@ -61,6 +61,7 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ("[scene]\nsamples = 3\n", "[scene] has no option 'samples'"),
         ("[walls]\n", "'walls' is not a section"),
         ("[grid]\nsamples = [1, 2]\n", "[grid] samples as a list gives the seeds of each "),
+        ("[grid]\nsamples = []\n", "[grid] samples must be a count or a list of counts, got"),
         (
             'kind = "resolution"\n[grid]\nsamples = [8, 4, 2]\n[scene]\nn_disk = [800, 1600]\n'
             'limit = ["profile-floor"]\n',
