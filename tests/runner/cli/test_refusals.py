@@ -81,7 +81,10 @@ FILE_CASES = [
     study("[grid]\nsamples = true\n", "[grid] samples must be an integer in [1, 10000], got True"),
     study("[grid]\nsamples = 0\n", "[grid] samples must be an integer in [1, 10000], got 0"),
     study("[grid]\nsamples = 100000\n", "[grid] samples must be an integer in [1, 10000]"),
-    study("[grid]\nsamples = [1, 2]\n", "[grid] samples must be one value"),
+    study(
+        "[grid]\nsamples = [1, 2]\n",
+        "[grid] samples as a list gives the seeds of each [scene] n_disk",
+    ),
     study("[grid]\nangles = 1\n", "[grid] angles must be an integer in [2, 1000], got 1"),
     study("[grid]\nangles = 2.5\n", "[grid] angles must be an integer in [2, 1000], got 2.5"),
     study("[grid]\nfirst_seed = -1\n", "[grid] first_seed must be an integer in [0, 4294967295]"),
