@@ -41,6 +41,8 @@ def limit_text(found: dict) -> str:
     if status == "not identified":
         levels = ", ".join(f"{n:,}" for n, _ in found["open_above"])
         lows = [low for _, low in found["open_above"]]
+        if found.get("of") == "mu_eff_top":
+            return f"not identified: no sliding branch at N = {levels} (beta on its plateau)"
         return (
             f"not identified: no upper bound at N = {levels} (beta on its plateau at every "
             f"angle; mu >= {min(lows):.3f} to {max(lows):.3f})"
@@ -100,7 +102,7 @@ def claims_markdown(table: list[dict]) -> str:
         for n in ns:
             cell = row["cells"].get(n)
             if cell and cell.get("note"):
-                cells.append(f"{cell['verdict']} ({cell['note']}, no upper bound)")
+                cells.append(f"{cell['verdict']} ({cell['note']})")
             else:
                 cells.append(
                     f"{cell['verdict']} ({pm(cell['value'], cell['error'])})" if cell else "-"

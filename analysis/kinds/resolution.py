@@ -264,9 +264,10 @@ def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
     }
 
 
-# Walton's mu, each way: where a level's data bound it from below only, no
-# limit is sought.
-MU_WAYS = {"mu": "measured", "mu_paper": "paper"}
+# Walton's mu, each way, and mu_eff at the top of the sliding branch that
+# the paper's-way fit's kink marks: where a level's data bound that mu from
+# below only (no angle on the sliding branch), no limit is sought.
+MU_WAYS = {"mu": "measured", "mu_paper": "paper", "mu_eff_top": "paper"}
 
 
 def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list[tuple]:
@@ -337,6 +338,7 @@ def limits(
                     "forms": {},
                     "halvings": None,
                     "open_above": open_above,
+                    "of": q,
                 }
                 continue
             if pays:

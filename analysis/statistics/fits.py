@@ -156,8 +156,7 @@ def walton_splits(
     """(mu, beta0), one row per split of the angles into a sliding set, the
     s smallest psi (beta + 1 = mu (1 + e) K psi, least squares through the
     origin), and a plateau, the others (beta0 their weighted mean), for s =
-    0 to the number of angles; clipped to the fit's bounds, a split with no
-    sliding angle at mu = MU_HIGH, one with no plateau at beta0 = 1.5."""
+    0 to the number of angles, clipped to the fit's bounds."""
     order = np.argsort(data.psi)
     slope = ((1.0 + _e(data, e)) * K * data.psi)[order]
     beta = data.beta[order]
@@ -168,8 +167,13 @@ def walton_splits(
     plateau_y = np.concatenate([np.cumsum((weight * beta)[::-1])[::-1], [0.0]])
     plateau_w = np.concatenate([np.cumsum(weight[::-1])[::-1], [0.0]])
     with np.errstate(divide="ignore", invalid="ignore"):
-        mu = np.where(sliding_xx > 0, sliding_xy / sliding_xx, MU_HIGH)
-        beta0 = np.where(plateau_w > 0, plateau_y / plateau_w, 1.5)
+        mu = sliding_xy / sliding_xx
+        beta0 = plateau_y / plateau_w
+    # no sliding angle (s = 0) or no plateau (s = all): the free parameter at
+    # the edge of its flat direction, the least mu that keeps every angle on
+    # the plateau, the least beta0 above every angle's sliding branch
+    mu[0] = np.max((1.0 + beta0[0]) / slope)
+    beta0[-1] = np.max(mu[-1] * slope - 1.0)
     return np.column_stack([np.clip(mu, 0.0, MU_HIGH), np.clip(beta0, -1.5, 1.5)])
 
 

@@ -18,7 +18,9 @@ every level and in the limit N -> infinity:
 - a level left out of the fits (analysis.kinds.resolution.excluded) is not judged;
 - Walton's mu where a level's data bound it from below only (beta on its
   plateau at every angle: ``mu_bounds``) misses if that lower bound lies
-  beyond the claim's range and is undecided otherwise; in the limit it is
+  beyond the claim's range and is undecided otherwise, and mu_eff at the
+  sliding branch's top, whose branch the paper's-way fit marks, is
+  undecided where that fit's mu is so bounded; in the limit both are
   undecided ("not identified");
 - "x > 1" (the grazing peak) meets if the interval x +- 2 errors lies above
   1, misses if below, and is undecided otherwise.
@@ -121,7 +123,9 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
         why = {
             "too few": "too few levels",
             "no form": "no form describes the levels",
-            "not identified": "not identified: no upper bound on mu",
+            "not identified": "not identified: no sliding branch"
+            if found and found.get("of") == "mu_eff_top"
+            else "not identified: no upper bound on mu",
         }.get(status)
         if status == "not converged":
             why = f"not converged at {found['halvings']['finest']:,}"
@@ -134,15 +138,23 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
     }
 
 
-def open_above(entry: dict, way: str | None, claim: tuple) -> dict | None:
-    """A Walton mu claim's cell at a level whose data bound mu from below
+# The fit whose mu a claim rests on: Walton's, each way; mu_eff at the top
+# of the sliding branch that the paper's-way fit's kink marks.
+SLIDING_FROM = {"mu": "measured", "mu_paper": "paper", "mu_eff_top": "paper"}
+
+
+def open_above(entry: dict, claim: tuple) -> dict | None:
+    """A mu claim's cell at a level whose data bound that fit's mu from below
     only (module docstring), or None where the fit bounds it."""
-    bounds = entry.get("mu_bounds", {}).get(way)
-    if not bounds or not math.isinf(bounds[1]) or claim[2] not in ("mu", "mu_paper"):
+    bounds = entry.get("mu_bounds", {}).get(SLIDING_FROM.get(claim[2]))
+    if not bounds or not math.isinf(bounds[1]):
         return None
+    if claim[2] == "mu_eff_top":  # no angle on the branch: nothing to read
+        return {"value": None, "error": None, "verdict": "undecided", "note": "no sliding branch"}
     _, _, _, paper, near, _ = claim
     verdict = "misses" if bounds[0] > paper + near else "undecided"
-    return {"value": None, "error": None, "verdict": verdict, "note": f"mu >= {bounds[0]:.3f}"}
+    note = f"mu >= {bounds[0]:.3f}, no upper bound"
+    return {"value": None, "error": None, "verdict": verdict, "note": note}
 
 
 def finest_systematic(
@@ -180,7 +192,7 @@ def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
         for n in ns:
             entry = summary.get((reading, lattice, n))
             found = level_error(entry, quantity, way) if entry else None
-            if found and (bound := open_above(entry, way, claim)):
+            if found and (bound := open_above(entry, claim)):
                 cells[n] = {**bound, "excluded": entry["excluded"]}
                 if entry["excluded"]:
                     cells[n]["verdict"] = "not judged"

@@ -29,5 +29,7 @@ def test_a_mu_without_upper_bound_at_any_level_has_no_limit():
     summary[("r", "random", 3200)]["mu_bounds"]["measured"] = (0.11, math.inf)
     assert unidentified(summary, "r", "random", "mu") == [(3200, 0.11)]
     assert unidentified(summary, "r", "random", "mu_paper") == []
+    summary[("r", "random", 1600)]["mu_bounds"]["paper"] = (0.02, math.inf)
+    assert unidentified(summary, "r", "random", "mu_eff_top") == [(1600, 0.02)]
     found = limits(summary, ("mu",))[("r", "random", "mu")]
     assert found["status"] == "not identified" and found["open_above"] == [(3200, 0.11)]

@@ -128,9 +128,30 @@ def test_a_mu_the_data_bound_from_below_only_is_judged_by_its_bound():
     summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.40, math.inf)}
     summary[("r", "random", 3200)]["mu_bounds"] = {"paper": (0.11, 0.13)}
     mu = next(c for c in claims_table(summary, {}, "r") if c["claim"] == MU[0])
-    assert (mu["cells"][800]["verdict"], mu["cells"][800]["note"]) == ("undecided", "mu >= 0.020")
+    assert mu["cells"][800]["verdict"] == "undecided"
+    assert mu["cells"][800]["note"] == "mu >= 0.020, no upper bound"
     assert mu["cells"][1600]["verdict"] == "misses"
     # bounded: judged by its value +- error as before (0.12 +- 0.02 reaches 0.13)
     assert "note" not in mu["cells"][3200] and mu["cells"][3200]["verdict"] == "undecided"
     found = {"status": "not identified", "open_above": [(800, 0.02)]}
     assert limit_verdict(found, MU)["verdict"] == "undecided (not identified: no upper bound on mu)"
+
+
+def test_mu_eff_at_a_branch_the_fit_leaves_free_is_not_judged():
+    """mu_eff reads the angles below the paper's-way fit's kink: where that
+    fit's mu has no upper bound, its value (far below 0.18) is not judged,
+    and in the limit it is undecided."""
+    claim = next(c for c in CLAIMS if c[2] == "mu_eff_top")
+    summary = {("r", "random", n): entry(16) for n in (800, 1600)}
+    for level in summary.values():
+        level["values"]["mu_eff_top"] = (0.01, 0.01)
+    summary[("r", "random", 800)]["mu_bounds"] = {"paper": (0.02, math.inf)}
+    summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.05, 0.07)}
+    row = next(c for c in claims_table(summary, {}, "r") if c["claim"] == claim[0])
+    assert (row["cells"][800]["verdict"], row["cells"][800]["note"]) == (
+        "undecided",
+        "no sliding branch",
+    )
+    assert row["cells"][1600]["verdict"] == "misses"
+    found = {"status": "not identified", "open_above": [(800, 0.02)], "of": "mu_eff_top"}
+    assert limit_verdict(found, claim)["verdict"] == "undecided (not identified: no sliding branch)"
