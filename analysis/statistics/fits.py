@@ -93,14 +93,13 @@ def _e(data: Means, e: float | None) -> np.ndarray:
 # Both models are piecewise in psi (a kink where sliding gives way to
 # sticking), so the cost has local minima. Walton's fit starts from every
 # split of the angles into a sliding set (the smallest psi) and a plateau,
-# each solved in closed form, and polishes the POLISH cheapest (on five
-# committed tables, both ways, within 4e-4 of the least cost from 16 grid
-# starts). The profile's grids: mu up to the fit's bound MU_HIGH, where a
-# plateau at every angle leaves mu free, and beta0.
+# each solved in closed form, and polishes the cheapest (on seven committed
+# tables, both ways, within 4e-4 of the least cost from 16 grid starts).
+# The profile's grids: mu up to the fit's bound MU_HIGH, where a plateau at
+# every angle leaves mu free, and beta0.
 MU_HIGH = 5.0
 MU_GRID = np.concatenate([[0.0], np.geomspace(1e-3, MU_HIGH, 60)])
 BETA0_GRID = np.linspace(-1.5, 1.5, 121)
-POLISH = 1
 # The compliant model's scan of mu (each point a sum over the angles of its
 # closed-form curve: the cost of its fit).
 COMPLIANT_MU_GRID = np.geomspace(1e-3, 3.0, 25)
@@ -143,11 +142,8 @@ def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = T
         return (walton_beta(data.psi, e_values, p[0], p[1], K) - data.beta) / scale
 
     starts = walton_splits(data, K, e, weighted)
-    cheapest = np.argsort([np.sum(residuals(p) ** 2) for p in starts])[:POLISH]
-    fits = [
-        least_squares(residuals, starts[k], bounds=([0.0, -1.5], [MU_HIGH, 1.5])) for k in cheapest
-    ]
-    return min(fits, key=lambda found: found.cost).x
+    cheapest = starts[np.argmin([np.sum(residuals(p) ** 2) for p in starts])]
+    return least_squares(residuals, cheapest, bounds=([0.0, -1.5], [MU_HIGH, 1.5])).x
 
 
 def walton_splits(

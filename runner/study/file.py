@@ -233,7 +233,7 @@ def read_study_file(path: Path) -> StudyFile:
                 for each in value:
                     VALUES[section][key].check(where, each)
                 level_samples = tuple(value)
-                value = max(value, default=1)
+                value = max(value)
             elif isinstance(value, list):
                 if section == "grid" and key not in GRID_AXES:
                     raise InputError(f"{where} must be one value, got {value!r}")
