@@ -27,9 +27,10 @@ import math
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import curve_fit
 
 from builder.materials import calibrated
+from ground.digits import rounded
+from ground.gate import write_text
 
 from .impact.failures import genuine
 from .statistics.measures import mu_eff
@@ -60,19 +61,15 @@ def power_law(v, y, sigma) -> dict:
     """
     v, y, sigma = (np.asarray(a, float) for a in (v, y, sigma))
     log_sigma = sigma / y
-    (log_a, p), cov = curve_fit(
-        lambda x, a, b: a + b * x,
-        np.log(v),
-        np.log(y),
-        sigma=log_sigma,
-        absolute_sigma=True,
-    )
+    # a straight line in log-log: numpy's weighted least squares in closed
+    # form, its covariance from the errors as given (absolute)
+    (p, log_a), cov = np.polyfit(np.log(v), np.log(y), 1, w=1.0 / log_sigma, cov="unscaled")
     residual = (np.log(y) - log_a - p * np.log(v)) / log_sigma
     dof = len(v) - 2
     return {
         "p": float(p),
         "A": float(math.exp(log_a)),
-        "p_fit_error": float(math.sqrt(cov[1, 1])),
+        "p_fit_error": float(math.sqrt(cov[0, 0])),
         "chi2": float(np.sum(residual**2) / dof) if dof > 0 else float("nan"),
     }
 
@@ -219,7 +216,7 @@ def estimates(rows: list[dict], resamples: int = 200) -> dict:
 
 def write_json(numbers: dict, path: Path) -> None:
     """speed.json, with null where a number is undefined (JSON has no NaN)."""
-    path.write_text(json.dumps(numbers, indent=1).replace("NaN", "null") + "\n")
+    write_text(path, json.dumps(rounded(numbers), indent=1).replace("NaN", "null") + "\n")
 
 
 # Gerl and Zippelius's trend and order count where e differs by more than

@@ -16,7 +16,7 @@ import math
 from pathlib import Path
 
 from ground.errors import InputError
-from ground.gate import gate
+from ground.gate import gate, write_json, write_text
 
 from . import speed
 from .impact.failures import impact_state, state_of
@@ -61,7 +61,7 @@ def record_timings(study, rows: list[dict]) -> dict:
     path = study.folder / "study.json"
     info = json.loads(path.read_text())
     info["lammps_seconds"] = round(sum(float(r["wall_seconds"] or 0.0) for r in rows), 1)
-    path.write_text(json.dumps(info, indent=1))
+    write_text(path, json.dumps(info, indent=1))
     return info
 
 
@@ -95,9 +95,9 @@ def write_records(info: dict, rows: list[dict], folder: Path, keep_run: bool = F
     """study.json and run.json of a study's tables into ``folder``; with
     ``keep_run`` an existing run.json stays as it is (a rerun that
     reproduced the committed impacts)."""
-    (folder / "study.json").write_text(public_record(info))
+    write_text(folder / "study.json", public_record(info))
     if not (keep_run and (folder / RUN_RECORD).is_file()):
-        (folder / RUN_RECORD).write_text(run_record(info, rows))
+        write_text(folder / RUN_RECORD, run_record(info, rows))
 
 
 def read_tables(tables: Path) -> tuple[dict, list[dict], list[dict]]:
@@ -157,7 +157,7 @@ def tidy_tables(tables: Path) -> None:
     write_records(info, rows, tables)
     if (tables / "fits.json").is_file():
         fits = rounded(json.loads((tables / "fits.json").read_text()))
-        (tables / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
+        write_json(tables / "fits.json", fits)
     if (tables / "speed.json").is_file():
         numbers = rounded(json.loads((tables / "speed.json").read_text()))
         speed.write_json(numbers, tables / "speed.json")

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import csv
 import json
-import math
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from builder.scene import MODEL_READINGS
-from ground.gate import gate
+from ground.digits import TABLE_DIGITS, rounded  # noqa: F401 (the tables' digits, here since before ground.digits)
+from ground.gate import atomic
 
 from .impact.result import MAX_DRIFT, UnreadableResult, read_result
 
@@ -99,24 +99,6 @@ HELD_COLUMNS = (*BINARY_COLUMNS, "target_held")
 # study.json (lammps_seconds), which its page states.
 TIMING_COLUMNS = ("study_lattice", "seed", "gamma_deg", "vn", "wall_seconds", "steps")
 TIMINGS = "timings.csv"
-# Significant digits of the numbers a page's tables keep that are computed
-# from the impacts (means, fits, bootstrap errors): beyond them the CPU's
-# arithmetic (numpy's order of summing, its vector width) moves the last
-# digits, and a page made again from the same tables on another x86-64 CPU
-# must be the same bytes. The errors of these numbers are 1e-3 and larger.
-TABLE_DIGITS = 10
-
-
-def rounded(value, digits: int = TABLE_DIGITS):
-    """``value`` with every float in it (in dicts, lists, tuples) to ``digits``
-    significant digits; other values as they are."""
-    if isinstance(value, float):
-        return float(f"{value:.{digits}g}") if math.isfinite(value) else value
-    if isinstance(value, dict):
-        return {k: rounded(v, digits) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return type(value)(rounded(v, digits) for v in value)
-    return value
 
 
 def held(values: dict) -> bool:
@@ -214,13 +196,11 @@ def row(result: dict, study_lattice: str) -> dict:
 
 
 def write_csv(rows: list[dict], path: Path | str, columns=COLUMNS) -> None:
-    path = gate(path)  # the one gate of every write (ground.gate)
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    with tmp.open("w", newline="") as handle:
+    # the one gate of every write, whole or not at all (ground.gate)
+    with atomic(path) as temporary, temporary.open("w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(columns), extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)
-    tmp.replace(path)
 
 
 def collect(folders: list[tuple[str, Path]]) -> list[dict]:

@@ -32,7 +32,7 @@ from bench.common import bench_parser, markdown_table, output_folder, write_repo
 from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from ground.checks import OutFolder
-from ground.gate import runs_folder
+from ground.gate import runs_folder, write_figure
 from reference.run import ReferenceOptions
 from reference.trace import event_kind, trace
 from reference.validate import scenes
@@ -241,7 +241,7 @@ def plot(table: list[dict], trace_file: Path, path: Path) -> None:
     right.set_ylabel("energy drift over nine rough scenes")
     right.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    write_figure(fig, path, 110)
 
 
 FAMILIES = ("verlet", "suzuki", "forest-ruth", "lammps")

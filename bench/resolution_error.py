@@ -39,6 +39,7 @@ from analysis.statistics import extrapolation, levels
 from bench.common import bench_parser, markdown_table, page_folder, refuse, write_report
 from ground.checks import InPath
 from ground.errors import InputError
+from ground.gate import write_figure
 from ground.paths import study_docs
 
 # study -> (its reading, how loaded the machine was while its seconds were measured)
@@ -259,7 +260,7 @@ def draw(found: dict, path: Path) -> None:
         if entry_["rows"]:  # a quantity with no limit (mu not identified) has none
             ax.legend()
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    write_figure(fig, path, 100)
     plt.close(fig)
 
 

@@ -44,7 +44,7 @@ from builder.assembly import build_scene
 from builder.lammps_data import write_scene
 from ground.checks import OutFolder
 from ground.errors import InputError
-from ground.gate import runs_folder
+from ground.gate import runs_folder, write_figure
 from ground.launch import LammpsError
 from reference.run import ReferenceOptions, Unstable, run_reference
 from reference.validate import reference_runs, scenes
@@ -288,7 +288,7 @@ def plot(table: list[dict], path: Path) -> None:
     ax.set_ylabel("median wall time per rough impact (s)")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    write_figure(fig, path, 110)
 
 
 def picks(table: list[dict], options: dict[str, RunOptions]) -> tuple[dict | None, dict | None]:

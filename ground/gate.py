@@ -15,10 +15,14 @@ Nothing here imports another package of the project.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
+from .digits import rounded
 from .errors import InputError
 from .paths import BUILD, PROTECTED, ROOT
 from .words import portable_problem, word_problem
@@ -90,16 +94,52 @@ def make_folder(path: Path | str, what: str = "") -> Path:
     return folder
 
 
+@contextmanager
+def atomic(path: Path | str, what: str = "") -> Iterator[Path]:
+    """A temporary file beside ``path`` (through the gate) for the block to
+    write; renamed over ``path`` when the block ends, removed if it fails
+    or is interrupted. A cut or interrupted write leaves the old file whole,
+    and an error of the disk names the file it was writing."""
+    path = gate(path, what)
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        yield temporary
+        os.replace(temporary, path)
+    except BaseException as error:
+        temporary.unlink(missing_ok=True)
+        if isinstance(error, OSError):  # a full disk's error names no file: this one
+            error.filename = str(path)
+        raise
+
+
 def write_text(path: Path | str, text: str, what: str = "") -> Path:
     """``text`` written to ``path`` through the gate (a link's target is
-    checked where it leads)."""
-    path = gate(path, what)
-    try:
-        path.write_text(text)
-    except OSError as error:  # a full disk's error names no file: this one
-        error.filename = error.filename or str(path)
-        raise
-    return path
+    checked where it leads), whole or not at all (``atomic``)."""
+    with atomic(path, what) as temporary:
+        temporary.write_text(text)
+    return expanded(path)
+
+
+def write_json(path: Path | str, data, what: str = "", **options) -> Path:
+    """``data`` as JSON (indent 1, a newline at the end), every float to
+    the tables' digits (ground.digits), through ``write_text``."""
+    return write_text(path, json.dumps(rounded(data), indent=1, **options) + "\n", what)
+
+
+def copy_file(source: Path | str, path: Path | str, what: str = "") -> Path:
+    """``source``'s bytes written to ``path`` through ``atomic``."""
+    with atomic(path, what) as temporary:
+        shutil.copyfile(source, temporary)
+    return expanded(path)
+
+
+def write_figure(figure, path: Path | str, dpi: int, what: str = "") -> Path:
+    """A matplotlib figure as PNG at ``path`` through the gate, whole or not
+    at all, with no metadata that names the software or the time: the same
+    bytes wherever the same numbers are drawn."""
+    with atomic(path, what) as temporary:
+        figure.savefig(temporary, format="png", dpi=dpi, metadata={"Software": None})
+    return expanded(path)
 
 
 def remove(path: Path | str, what: str = "") -> None:

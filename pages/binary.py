@@ -13,6 +13,7 @@ from analysis import binary_comparison
 from analysis.binary_comparison import DIFFERENT, SAME, THIS_STUDY
 from analysis.statistics.estimates import CHI2_LIMIT
 from analysis.table import rounded, write_csv
+from ground.gate import write_figure
 
 from .render import macro
 
@@ -48,7 +49,7 @@ def draw(numbers: dict, folder: Path | str, name: str) -> None:
                 )
         ax.legend(fontsize=8)
         fig.tight_layout()
-        fig.savefig(folder / f"binary_{q}_{name}.png", dpi=110)
+        write_figure(fig, folder / f"binary_{q}_{name}.png", 110)
         plt.close(fig)
 
 

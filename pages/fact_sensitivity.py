@@ -7,6 +7,7 @@ from pathlib import Path
 
 from analysis.kinds.fact_sensitivity import AXES, FACTS, facts, label, points
 from analysis.kinds.readings import Setup
+from ground.gate import write_figure
 
 from .render import render
 from .text import markdown_table
@@ -58,7 +59,7 @@ def draw(summaries: dict, base: tuple[float, float], path: Path) -> None:
         "grey: the paper's values)"
     )
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    write_figure(fig, path, 110)
     plt.close(fig)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from analysis.table import near_the_ends
 from analysis.theory.tangential import Compliant, compliant_beta, walton_beta
+from ground.gate import write_figure
 
 LABELS = {
     "random": "random",
@@ -124,7 +125,7 @@ def _finish(fig, ax, path: Path, empty: str) -> Path:
     else:
         ax.text(0.5, 0.5, empty, transform=ax.transAxes, ha="center")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    write_figure(fig, path, 110)
     import matplotlib.pyplot as plt
 
     plt.close(fig)

@@ -5,6 +5,7 @@ same study under other readings. The prose: pages/templates/grazing.md.j2."""
 from __future__ import annotations
 
 from analysis.grazing import LOOK_ELSEWHERE_RESAMPLES, SIGNIFICANT
+from ground.gate import write_figure
 
 from .figures import LABELS, STYLE
 from .render import macro
@@ -44,5 +45,5 @@ def draw(numbers: dict, folder) -> None:
     ax.legend(fontsize=8)
     fig.tight_layout()
     folder.mkdir(parents=True, exist_ok=True)
-    fig.savefig(folder / "grazing_e.png", dpi=120)
+    write_figure(fig, folder / "grazing_e.png", 120)
     plt.close(fig)

@@ -13,7 +13,6 @@ analysis/ of the same name, analysis.kinds).
 from __future__ import annotations
 
 import importlib
-import json
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import ModuleType
@@ -24,7 +23,7 @@ from analysis.kinds import READINGS_KINDS
 from analysis.kinds.readings import Setup, read_record, read_rows
 from analysis.study_tables import read_tables
 from analysis.table import MEAN_COLUMNS, rounded, write_csv
-from ground.gate import gate, make_folder
+from ground.gate import gate, make_folder, write_json, write_text
 
 from . import binary, binary_findings, figures, grazing, normals
 from . import speed as speed_page
@@ -86,10 +85,11 @@ class ResultsPage:
         fits, means = study_numbers.results_numbers(study.rows, study.resamples)
         extra = self.sections(study, fits)
         write_csv(means, study.out / "means.csv", MEAN_COLUMNS)
-        (study.out / "fits.json").write_text(json.dumps(fits, indent=1) + "\n")
+        write_json(study.out / "fits.json", fits)
         figures.draw(means, fits, study.figure_dir)
         done = study_numbers.samples_done(study.info, study.rows, study.failed)
-        study.page.write_text(
+        write_text(
+            study.page,
             results_page(
                 study.info,
                 study.rows,
@@ -103,7 +103,7 @@ class ResultsPage:
                 study.tables,
                 extra,
                 study.sections,
-            )
+            ),
         )
         return fits
 
@@ -167,7 +167,7 @@ class SpeedPage:
         numbers = rounded(speed.estimates(study.rows, study.resamples))
         speed.write_json(numbers, study.out / "speed.json")
         speed_page.draw(numbers, study.figure_dir)
-        study.page.write_text(speed_page.text(study, numbers))
+        write_text(study.page, speed_page.text(study, numbers))
         return numbers
 
 
@@ -205,5 +205,5 @@ def readings_page(kind: str, tables: Path, page: Path, setup: Setup) -> Path:
     # the title, the command and machine that made the rows (for rows made
     # before the study file, the commit of the command and the command that
     # runs the same studies since), the body
-    page.write_text(render("readings_page.md.j2", title=module.TITLE, record=record, body=body))
+    write_text(page, render("readings_page.md.j2", title=module.TITLE, record=record, body=body))
     return page

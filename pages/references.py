@@ -18,6 +18,7 @@ from analysis.kinds.references import (
     group_key,
     numbers,
 )
+from ground.gate import write_figure
 
 from .render import render
 from .text import markdown_table
@@ -89,7 +90,7 @@ def draw(numbers: dict, speeds: list[float], figure: Path) -> None:
         ax.set_ylabel(label)
     axes[0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(figure, dpi=110)
+    write_figure(fig, figure, 110)
     plt.close(fig)
 
 

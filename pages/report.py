@@ -17,7 +17,7 @@ from analysis.study_tables import (
     write_study_tables,
 )
 from analysis.table import collect
-from ground.gate import gate, make_folder
+from ground.gate import copy_file, gate, make_folder, write_text
 from ground.paths import ROOT
 
 from .kinds import StudyTables, table_kind
@@ -79,7 +79,7 @@ def report(
         readings,
         sections,
     )
-    (study.folder / RUN_RECORD).write_text(run_record(info, rows))
+    write_text(study.folder / RUN_RECORD, run_record(info, rows))
     if tables is not None:
         make_folder(tables)
         # every impact as the committed tables have it: the run's provenance stays theirs
@@ -89,7 +89,7 @@ def report(
         )
         for name in ("impacts.csv", "means.csv", "fits.json", "speed.json", "failed.csv"):
             if (study.folder / name).exists():  # a speed study has speed.json instead of fits
-                (tables / name).write_bytes((study.folder / name).read_bytes())
+                copy_file(study.folder / name, tables / name)
         write_records(info, rows, tables, keep_run=reproduced)
     return summary
 

@@ -28,6 +28,7 @@ from analysis.statistics import extrapolation
 from analysis.statistics.estimates import CHI2_LIMIT
 from analysis.statistics.resolution_claims import CLAIMS, claims_table
 from analysis.statistics.seeds import BOOTSTRAP_FROM
+from ground.gate import write_figure
 
 from . import resolution_tables as tables
 from .render import render
@@ -123,7 +124,7 @@ def draw_curves(rows: list[dict], path: Path) -> None:
         fontsize=9,
     )
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    write_figure(fig, path, 100)
     plt.close(fig)
 
 
@@ -166,7 +167,7 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
         fontsize=8,
     )
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    write_figure(fig, path, 100)
     plt.close(fig)
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from analysis.kinds.resolution import FITTED, QUANTITIES, order
 from analysis.statistics.extrapolation import FIT_FROM, FORMS
+from ground.gate import atomic
 
 from .text import markdown_table, pm
 
@@ -76,7 +77,7 @@ def write_limits_csv(limits: dict, path: Path) -> None:
     """Every form's fit of every quantity (limits.csv beside the figures)."""
     columns = ["reading", "lattice", "quantity", "status", "levels", "form", "Q0", "Q0_sd"]
     columns += ["c", "c_sd", "p", "p_sd", "chi2_per_dof", "dof", "p_value", "describes"]
-    with Path(path).open("w", newline="") as handle:
+    with atomic(path) as temporary, temporary.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(columns)
         for (reading, lattice, q), found in sorted(limits.items()):
@@ -187,7 +188,7 @@ def level_rows(
 
 def write_levels_csv(summary: dict, path: Path) -> None:
     """Every level's table row (levels.csv beside the figures)."""
-    with Path(path).open("w", newline="") as handle:
+    with atomic(path) as temporary, temporary.open("w", newline="") as handle:
         writer = csv.writer(handle)
         first = True
         for reading, lattice in sorted({k[:2] for k in summary}, key=order):

@@ -30,6 +30,7 @@ from analysis.kinds.scene_readings import (
     summarise,
 )
 from analysis.table import mean_rows
+from ground.gate import write_figure
 
 from .render import render
 from .text import markdown_table
@@ -115,7 +116,7 @@ def draw(rows: list[dict], path: Path) -> None:
         "Random disk on every reading of the wall (grey: the paper's e = 0.8, beta0 = 0.56)"
     )
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    write_figure(fig, path, 110)
     plt.close(fig)
 
 

@@ -10,6 +10,7 @@ import numpy as np
 from analysis import speed
 from analysis.impact.failures import outcome
 from builder.materials import STUDY_LATTICES as LATTICES
+from ground.gate import write_figure
 
 from .command import made_by
 from .figures import LABELS, STYLE
@@ -50,7 +51,7 @@ def draw(numbers: dict, folder: Path) -> list[Path]:
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
     paths = [folder / "speed_e.png"]
-    fig.savefig(paths[0], dpi=120)
+    write_figure(fig, paths[0], 120)
     plt.close(fig)
 
     fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.2))
@@ -69,7 +70,7 @@ def draw(numbers: dict, folder: Path) -> list[Path]:
     axes[0].legend(fontsize=8)
     fig.tight_layout()
     paths.append(folder / "speed_beta0_mu.png")
-    fig.savefig(paths[1], dpi=120)
+    write_figure(fig, paths[1], 120)
     plt.close(fig)
     return paths
 

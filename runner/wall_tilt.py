@@ -29,7 +29,7 @@ from analysis.impact.tilt import surface_tilt, tilt_effect, tilted_e
 from builder.scene import ANGLE
 from ground.checks import InPath, OutFolder, Range
 from ground.errors import InputError
-from ground.gate import grant, make_folder
+from ground.gate import grant, make_folder, write_figure
 from ground.paths import ROOT, study_docs
 from pages.report import shown_path
 from pages.text import markdown_table
@@ -88,7 +88,7 @@ def draw(runs: list[dict], path: Path) -> None:
     ax.set_ylabel("tilt of the wall under the disk, degrees")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure(fig, path, 120)
     plt.close(fig)
 
 

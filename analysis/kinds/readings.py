@@ -29,6 +29,7 @@ from builder.study_names import (  # noqa: F401 (the readings by name live there
     WALLS,
     wall_label,
 )
+from ground.gate import write_text
 
 from ..impact.failures import failure_cause
 from ..table import TIMINGS, write_csv
@@ -141,4 +142,4 @@ def read_record(folder: Path) -> dict:
 
 
 def write_record(record: dict, folder: Path) -> None:
-    (Path(folder) / RECORD).write_text(json.dumps(record, indent=1) + "\n")
+    write_text(Path(folder) / RECORD, json.dumps(record, indent=1) + "\n")

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ground.digits import rounded
+
 from ..statistics.fits import Means, fit_walton, reduced_chi2, weights_floor
 from ..table import NEAR_SIDE, mean_rows
 from ..theory.tangential import walton_beta
@@ -150,7 +152,7 @@ def summarise(rows: list[dict]) -> dict:
             (e_miss_se / E_NEAR) ** 2 + (beta0_sd / BETA0_NEAR) ** 2 + (share_se / ENDS_NEAR) ** 2
         )
     )
-    return out
+    return rounded(out)  # as written: a median on a rounding edge prints the same everywhere
 
 
 def rank_summaries(summaries: dict) -> list[str]:

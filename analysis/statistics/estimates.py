@@ -27,10 +27,12 @@ import itertools
 
 import numpy as np
 
+from ground.digits import half_range
+
 from ..table import NEAR_SIDE, NEAR_SIDE_SHARE, held
 from ..theory.tangential import nu_for_eta, walton_beta
 from .fits import Means, compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
-from .measures import measures, sliding_branch
+from .measures import kink, measures, sliding_branch
 from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_errors, seed_tables
 
 # The paper's fits (MODEL.md sections 6 and 8).
@@ -224,11 +226,9 @@ def neighbour_correlation(table: SeedTable) -> float:
 
 
 def systematic(fits: list[dict], parameters) -> dict:
-    """Half the range of each parameter over the fitting choices."""
-    return {
-        p: 0.5 * (max(f[p] for f in fits) - min(f[p] for f in fits)) if fits else np.nan
-        for p in parameters
-    }
+    """Half the range of each parameter over the fitting choices, of the
+    numbers as written (exactly 0 where the choices agree)."""
+    return {p: half_range(f[p] for f in fits) for p in parameters}
 
 
 def study_estimates(
@@ -339,7 +339,7 @@ def study_estimates(
         entry["sliding_branch"] = {
             "rule": "cot gamma below the kink of the paper's-way Walton fit, "
             "(1 + beta0) / (mu (1 + 0.8) 3)",
-            "psi_c": (1.0 + paper["beta0"]) / (paper["mu"] * (1.0 + PAPER["e"]) * PAPER["K"]),
+            "psi_c": kink(paper["mu"], paper["beta0"], PAPER["e"], PAPER["K"]),
             "gamma_deg": [float(g) for g in table.gamma_deg[branch]],
         }
         entry["measures"] = {}
@@ -385,7 +385,7 @@ def pair_entry(study: Study, best: dict, sd: dict, lattices: dict) -> dict:
             )
             if (a["e"], a["weights"], a["angles"]) == (b["e"], b["weights"], b["angles"])
         ]
-        difference["systematic"] = 0.5 * (max(shifts) - min(shifts)) if shifts else np.nan
+        difference["systematic"] = half_range(shifts)
         entry[f"beta0_difference_{name}"] = difference
     return entry
 

@@ -4,7 +4,7 @@
 The levels are disk resolutions N with a value and its statistical error;
 the spacing is h = sqrt(REFERENCE_N / N) (1 at the paper's 800 points). From
 FIT_FROM points up, three forms are fitted by weighted least squares
-(scipy.optimize.curve_fit, the errors absolute):
+(``fit_form``, the errors absolute):
 
 - ``h``: Q0 + c h;
 - ``h2``: Q0 + c h^2;
@@ -30,8 +30,8 @@ across N pass the paired steps' own errors, ``steps``).
 
 Levels whose errors are correlated (multilevel estimates, which share the
 coarsest level's: analysis.statistics.levels.multilevel_levels) pass their
-covariance; the forms are then fitted by generalized least squares (the
-covariance as curve_fit's sigma) and chi^2 is r^T C^-1 r.
+covariance; the forms are then fitted by generalized least squares and
+chi^2 is r^T C^-1 r.
 
 How far the 800-point level lies from the limit is the fits' c (the curve's
 rise from h = 0 to h = 1) with its error: the 800-point value is itself in
@@ -41,11 +41,12 @@ count it twice.
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
-from scipy import optimize, stats
+from scipy import linalg, stats
 
+from ground.digits import half_range
+
+from .fits import least_of_smooth
 from .seeds import BOOTSTRAP_FROM, interval_factor
 
 REFERENCE_N = 800
@@ -64,26 +65,42 @@ def spacing(n) -> np.ndarray:
     return np.sqrt(REFERENCE_N / np.asarray(n, float))
 
 
-def _model(form: str):
-    if form == "h":
-        return lambda h, q0, c: q0 + c * h
-    if form == "h2":
-        return lambda h, q0, c: q0 + c * h**2
-    return lambda h, q0, c, p: q0 + c * h**p
+# The power law's exponent: scanned on this grid, then the least of the
+# profiled chi^2 between the scan's neighbours (the root of its slope).
+POWER_GRID = np.geomspace(*POWER_BOUNDS, 49)
+EXPONENTS = {"h": 1.0, "h2": 2.0}
 
 
-def _curve_fit(*args, **kwargs):
-    """scipy's curve_fit, quiet about parameters the levels leave undetermined:
-    their infinite errors make the form describe nothing (``fit_form``)."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", optimize.OptimizeWarning)
-        return optimize.curve_fit(*args, **kwargs)
+def _whitener(sigma: np.ndarray):
+    """A function that whitens vectors and matrices by the levels' errors:
+    divides by their sd, or solves with the covariance's Cholesky factor
+    (generalized least squares becomes ordinary least squares)."""
+    if sigma.ndim == 1:
+        return lambda a: (np.asarray(a, float).T / sigma).T
+    factor = linalg.cholesky(sigma, lower=True)
+    return lambda a: linalg.solve_triangular(factor, a, lower=True)
+
+
+def _line(h: np.ndarray, q: np.ndarray, p: float, whiten) -> tuple[np.ndarray, float]:
+    """(Q0, c) of Q0 + c h^p by (generalized) least squares, and its chi^2:
+    closed form, the same to the last bits wherever it runs."""
+    design = whiten(np.column_stack([np.ones_like(h), h**p]))
+    target = whiten(q)
+    coef = np.linalg.lstsq(design, target, rcond=None)[0]
+    residual = target - design @ coef
+    return coef, float(residual @ residual)
 
 
 def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
     """One form fitted to levels (N, Q, sd), or to levels whose errors are
     correlated (``covariance``, whose diagonal is sd squared); None with too
     few levels (the power law needs four) or if the fit fails.
+
+    The fixed exponents are linear least squares, in closed form; the power
+    law's exponent minimises the chi^2 profiled over (Q0, c), which is
+    smooth in p (``fits.least_of_smooth``), so that no search's stopping
+    point sets the last digits. The errors are those of the linearised
+    model at the least, the errors absolute.
 
     Returns
     -------
@@ -98,38 +115,37 @@ def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
     parameters = 3 if form == "power" else 2
     if len(q) < parameters + 1:
         return None
-    line = np.polyfit(h, q, 1, w=1.0 / sd)
     sigma = sd if covariance is None else np.asarray(covariance, float)
     try:
+        whiten = _whitener(sigma)
+        pinned = False
         if form == "power":
-            p0 = (line[1], line[0], 1.0)
-            bounds = ([-np.inf, -np.inf, POWER_BOUNDS[0]], [np.inf, np.inf, POWER_BOUNDS[1]])
-            coef, cov = _curve_fit(
-                _model(form), h, q, p0=p0, sigma=sigma, absolute_sigma=True, bounds=bounds
-            )
+            profile = [_line(h, q, p, whiten)[1] for p in POWER_GRID]
+            k = int(np.argmin(profile))
+            low, high = POWER_GRID[max(k - 1, 0)], POWER_GRID[min(k + 1, len(POWER_GRID) - 1)]
+            found = least_of_smooth(lambda p: _line(h, q, p, whiten)[1], low, high)
+            exponent = POWER_GRID[k] if found is None else found
+            pinned = found is None and k in (0, len(POWER_GRID) - 1)
         else:
-            coef, cov = _curve_fit(
-                _model(form), h, q, p0=(line[1], line[0]), sigma=sigma, absolute_sigma=True
-            )
-        residual = q - _model(form)(h, *coef)
-        chi2 = (
-            float(np.sum((residual / sd) ** 2))
-            if covariance is None
-            else float(residual @ np.linalg.solve(sigma, residual))
-        )
-    except (RuntimeError, ValueError, np.linalg.LinAlgError):
+            exponent = EXPONENTS[form]
+        (q0, c), chi2 = _line(h, q, exponent, whiten)
+        columns = [np.ones_like(h), h**exponent]
+        if form == "power":  # the exponent's column of the linearised model
+            columns.append(c * h**exponent * np.log(h))
+        jacobian = whiten(np.column_stack(columns))
+        with np.errstate(all="ignore"):
+            errors = np.sqrt(np.abs(np.diag(np.linalg.inv(jacobian.T @ jacobian))))
+    except (ValueError, np.linalg.LinAlgError):
         return None
     dof = len(q) - parameters
-    errors = np.sqrt(np.diag(cov))
     p_value = float(stats.chi2.sf(chi2, dof))
-    pinned = form == "power" and not (POWER_BOUNDS[0] * 1.001 < coef[2] < POWER_BOUNDS[1] / 1.001)
     return {
         "form": form,
-        "limit": float(coef[0]),
+        "limit": float(q0),
         "limit_sd": float(errors[0]),
-        "c": float(coef[1]),
+        "c": float(c),
         "c_sd": float(errors[1]),
-        "p": float(coef[2]) if form == "power" else (1.0 if form == "h" else 2.0),
+        "p": float(exponent),
         "p_sd": float(errors[2]) if form == "power" else 0.0,
         "chi2": chi2 / dof,
         "dof": dof,
@@ -248,7 +264,7 @@ def limit(
         status="limit",
         value=0.5 * (min(intercepts) + max(intercepts)),
         stat=max(f["limit_sd"] for f in fixed),
-        systematic=0.5 * (max(intercepts) - min(intercepts)),
+        systematic=half_range(intercepts),
         band=(min(intercepts), max(intercepts)),
         described_by=[f["form"] for f in good],
         shift_800=0.5 * (min(shifts) + max(shifts)),

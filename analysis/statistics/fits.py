@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, least_squares, minimize_scalar
+from scipy.optimize import brentq, minimize_scalar
 
 from ..theory.tangential import Compliant, compliant_beta, walton_beta
 from .seeds import SeedTable
@@ -90,19 +90,28 @@ def _e(data: Means, e: float | None) -> np.ndarray:
     return data.e if e is None else np.full_like(data.psi, e)
 
 
-# Both models are piecewise in psi (a kink where sliding gives way to
-# sticking), so the cost has local minima. Walton's fit starts from every
-# split of the angles into a sliding set (the smallest psi) and a plateau,
-# each solved in closed form, and polishes the cheapest (on seven committed
-# tables, both ways, within 4e-4 of the least cost from 16 grid starts).
-# The profile's grids: mu up to the fit's bound MU_HIGH, where a plateau at
-# every angle leaves mu free, and beta0.
+# Walton's model is piecewise linear in (mu, beta0): an angle slides or
+# sits on the plateau, and the cost is a quadratic on each side of every
+# kink. Its least is therefore found exactly (``walton_candidates``), not
+# by a search whose stopping point moves with the data's last bits: every
+# split of the angles into sliding and plateau solved in closed form, and
+# every angle put exactly on the kink. The fit's bounds: mu up to MU_HIGH
+# (where a plateau at every angle leaves mu free), beta0 in BETA0_BOUNDS.
 MU_HIGH = 5.0
+BETA0_BOUNDS = (-1.5, 1.5)
+# The profile's grid of mu, refined at its edges by root finding.
 MU_GRID = np.concatenate([[0.0], np.geomspace(1e-3, MU_HIGH, 60)])
-BETA0_GRID = np.linspace(-1.5, 1.5, 121)
+# Two costs this close (relative) are the same least: the point with the
+# smaller mu (then the smaller beta0) is reported, so that a flat valley
+# gives its defined edge rather than whichever point the rounding favours.
+SAME_COST = 1e-10
 # The compliant model's scan of mu (each point a sum over the angles of its
-# closed-form curve: the cost of its fit).
+# closed-form curve: the cost of its fit), then the root of the cost's slope.
 COMPLIANT_MU_GRID = np.geomspace(1e-3, 3.0, 25)
+# The relative step of a central difference of a smooth cost, and how far
+# (relative) on either side of a search's stop its slope's root is sought.
+SLOPE_STEP = 1e-4
+POLISH = 1e-4
 
 
 def walton_costs(
@@ -116,9 +125,56 @@ def walton_costs(
     return np.sum(((model - data.beta) / _scale(data, weighted)) ** 2, axis=-1)
 
 
+def _least_point(points: np.ndarray, costs: np.ndarray, scale: float) -> np.ndarray:
+    """The point of least cost; among costs within SAME_COST of it (relative
+    to ``scale``, a cost of the data's own size), the least mu, then the
+    least beta0."""
+    tied = costs <= costs.min() + SAME_COST * scale
+    rows = np.flatnonzero(tied)
+    return points[rows[np.lexsort((points[rows, 1], points[rows, 0]))[0]]]
+
+
+def walton_candidates(
+    data: Means, K: float, e: float | None = None, weighted: bool = True
+) -> np.ndarray:
+    """(mu, beta0), one row per place where Walton's least cost may lie,
+    within the fit's bounds: for every split of the angles into a sliding
+    set (the smallest (1 + e) K psi) and a plateau, the two closed-form
+    least-squares solutions (beta + 1 = mu (1 + e) K psi through the
+    origin; beta0 the plateau's weighted mean); and for every angle put
+    exactly on the kink (beta0 = mu (1 + e) K psi_j - 1, one parameter left,
+    again in closed form). A split with no sliding angle or no plateau puts
+    its free parameter at the edge of its flat direction: the least mu that
+    keeps every angle on the plateau, the least beta0 above every sliding
+    angle. The cost is continuous and quadratic between kinks, so its least
+    is at one of these rows (or on a bound, where a row is clipped to)."""
+    slope = (1.0 + _e(data, e)) * K * data.psi
+    order = np.argsort(slope, kind="stable")
+    slope, beta = slope[order], data.beta[order]
+    weight = 1.0 / _scale(data, weighted)[order] ** 2
+    # splits: sums over the k smallest slopes (sliding) and over the rest (plateau)
+    sliding_xy = np.concatenate([[0.0], np.cumsum(weight * slope * (beta + 1.0))])
+    sliding_xx = np.concatenate([[0.0], np.cumsum(weight * slope**2)])
+    plateau_y = np.concatenate([np.cumsum((weight * beta)[::-1])[::-1], [0.0]])
+    plateau_w = np.concatenate([np.cumsum(weight[::-1])[::-1], [0.0]])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mu = sliding_xy / sliding_xx
+        beta0 = plateau_y / plateau_w
+    mu[0] = (1.0 + beta0[0]) / slope[0]
+    beta0[-1] = mu[-1] * slope[-1] - 1.0
+    # kinks: angle j on it, every angle's model mu min(slope_i, slope_j) - 1
+    capped = np.minimum(slope[None, :], slope[:, None])
+    on_kink = (capped * weight * (beta + 1.0)).sum(axis=1) / (capped**2 * weight).sum(axis=1)
+    mu = np.concatenate([mu, on_kink])
+    beta0 = np.concatenate([beta0, on_kink * slope - 1.0])
+    mu = np.clip(np.nan_to_num(mu, nan=0.0), 0.0, MU_HIGH)
+    return np.column_stack([mu, np.clip(np.nan_to_num(beta0, nan=-1.0), *BETA0_BOUNDS)])
+
+
 def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = True) -> np.ndarray:
-    """(mu, beta0) of Walton's model by least squares on the per-angle means,
-    polished from the cheapest of ``walton_splits``' starts.
+    """(mu, beta0) of Walton's model by least squares on the per-angle means:
+    the least of ``walton_candidates`` (exact, no search); where a valley
+    of equal cost is flat, its least mu.
 
     Parameters
     ----------
@@ -136,59 +192,33 @@ def fit_walton(data: Means, K: float, e: float | None = None, weighted: bool = T
     numpy.ndarray
         (mu, beta0).
     """
-    e_values, scale = _e(data, e), _scale(data, weighted)
-
-    def residuals(p):
-        return (walton_beta(data.psi, e_values, p[0], p[1], K) - data.beta) / scale
-
-    starts = walton_splits(data, K, e, weighted)
-    cheapest = starts[np.argmin([np.sum(residuals(p) ** 2) for p in starts])]
-    return least_squares(residuals, cheapest, bounds=([0.0, -1.5], [MU_HIGH, 1.5])).x
+    points = walton_candidates(data, K, e, weighted)
+    model = walton_beta(data.psi, _e(data, e), points[:, :1], points[:, 1:], K)
+    costs = np.sum(((model - data.beta) / _scale(data, weighted)) ** 2, axis=1)
+    return _least_point(points, costs, _cost_scale(data, weighted))
 
 
-def walton_splits(
-    data: Means, K: float, e: float | None = None, weighted: bool = True
-) -> np.ndarray:
-    """(mu, beta0), one row per split of the angles into a sliding set, the
-    s smallest psi (beta + 1 = mu (1 + e) K psi, least squares through the
-    origin), and a plateau, the others (beta0 their weighted mean), for s =
-    0 to the number of angles, clipped to the fit's bounds."""
-    order = np.argsort(data.psi)
-    slope = ((1.0 + _e(data, e)) * K * data.psi)[order]
-    beta = data.beta[order]
-    weight = 1.0 / _scale(data, weighted)[order] ** 2
-    # sums over the s smallest psi (sliding) and over the rest (plateau)
-    sliding_xy = np.concatenate([[0.0], np.cumsum(weight * slope * (beta + 1.0))])
-    sliding_xx = np.concatenate([[0.0], np.cumsum(weight * slope**2)])
-    plateau_y = np.concatenate([np.cumsum((weight * beta)[::-1])[::-1], [0.0]])
-    plateau_w = np.concatenate([np.cumsum(weight[::-1])[::-1], [0.0]])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mu = sliding_xy / sliding_xx
-        beta0 = plateau_y / plateau_w
-    # no sliding angle (s = 0) or no plateau (s = all): the free parameter at
-    # the edge of its flat direction, the least mu that keeps every angle on
-    # the plateau, the least beta0 above every angle's sliding branch
-    mu[0] = np.max((1.0 + beta0[0]) / slope)
-    beta0[-1] = np.max(mu[-1] * slope - 1.0)
-    return np.column_stack([np.clip(mu, 0.0, MU_HIGH), np.clip(beta0, -1.5, 1.5)])
+def _cost_scale(data: Means, weighted: bool) -> float:
+    """A cost of the data's own size: the squared distance of every mean
+    from beta = -1, weighted as the fit weighs it."""
+    return float(np.sum(((data.beta + 1.0) / _scale(data, weighted)) ** 2)) or 1.0
 
 
 def walton_profile(
     data: Means, K: float, mu: float, e: float | None = None, weighted: bool = True
 ) -> float:
-    """The least cost of Walton's model at a fixed ``mu`` over beta0: the
-    best of BETA0_GRID, refined by a bounded search around it (the cost is
-    piecewise quadratic in beta0, not convex)."""
-    e_values, scale = _e(data, e), _scale(data, weighted)
-
-    def cost(beta0: float) -> float:
-        model = walton_beta(data.psi, e_values, mu, beta0, K)
-        return float(np.sum(((model - data.beta) / scale) ** 2))
-
-    costs = walton_costs(data, K, [mu], BETA0_GRID, e, weighted)[0]
-    best, step = BETA0_GRID[np.argmin(costs)], BETA0_GRID[1] - BETA0_GRID[0]
-    bounds = (max(best - step, BETA0_GRID[0]), min(best + step, BETA0_GRID[-1]))
-    return min(float(costs.min()), minimize_scalar(cost, bounds=bounds, method="bounded").fun)
+    """The least cost of Walton's model at a fixed ``mu`` over beta0, exact:
+    at fixed mu the cost is quadratic in beta0 between the angles' kinks
+    (beta0 = mu (1 + e) K psi - 1), an angle on the plateau where beta0 is
+    below its kink, so the least is at a kink, at a bound, or at the weighted
+    mean of the angles of the j highest kinks (those on the plateau)."""
+    slope = (1.0 + _e(data, e)) * K * data.psi
+    order = np.argsort(slope, kind="stable")[::-1]
+    weight = 1.0 / _scale(data, weighted)[order] ** 2
+    plateau_means = np.cumsum(weight * data.beta[order]) / np.cumsum(weight)
+    beta0 = np.concatenate([mu * slope - 1.0, plateau_means, BETA0_BOUNDS])
+    beta0 = np.clip(beta0, *BETA0_BOUNDS)
+    return float(walton_costs(data, K, [mu], beta0, e, weighted).min())
 
 
 def walton_mu_bounds(
@@ -216,7 +246,7 @@ def walton_mu_bounds(
         """Where the profile crosses ``level`` between two grid points."""
         low, high = sorted((grid[outside], grid[within]))
         return float(
-            brentq(lambda m: walton_profile(data, K, m, e, weighted) - level, low, high, xtol=1e-5)
+            brentq(lambda m: walton_profile(data, K, m, e, weighted) - level, low, high, xtol=1e-13)
         )
 
     first, last = inside[0], inside[-1]
@@ -274,16 +304,44 @@ def fit_compliant(
         return float(np.sum(((compliant_curve(data, mu, nu, alpha, e) - data.beta) / scale) ** 2))
 
     if start is not None:
-        low, high = start / 1.25, start * 1.25
-        found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
-        if low * 1.001 < found.x < high / 1.001:
-            return np.array([found.x])
+        found = least_of_smooth(cost, start / 1.25, start * 1.25)
+        if found is not None:
+            return np.array([found])
     grid = COMPLIANT_MU_GRID
-    costs = [cost(m) for m in grid]
-    k = int(np.argmin(costs))
+    k = int(np.argmin([cost(m) for m in grid]))
     low, high = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-    found = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
-    return np.array([found.x])
+    found = least_of_smooth(cost, low, high)
+    return np.array([found if found is not None else grid[k]])
+
+
+def least_of_smooth(cost, low: float, high: float) -> float | None:
+    """Where a smooth cost of one positive parameter is least inside (low,
+    high), to its last bits; None if it is least at an end.
+
+    A search on the cost's values (Brent's, ``minimize_scalar``) stops
+    within about sqrt(machine epsilon) of the least, where the cost no
+    longer tells points apart, and where it stops moves with the data's
+    last bits. So the search only comes near, and the least is then the
+    root of the cost's slope (a central difference of relative step
+    SLOPE_STEP), from a secant through two points POLISH on either side,
+    or by Brent's root finding if the search stopped farther off: a point
+    the same to its last bits wherever it is computed."""
+
+    def slope(x: float) -> float:
+        step = SLOPE_STEP * x
+        return cost(x + step) - cost(x - step)
+
+    near = minimize_scalar(cost, bounds=(low, high), method="bounded", options={"xatol": 1e-6})
+    x = float(near.x)
+    if not low * 1.001 < x < high / 1.001:
+        return None
+    a, b = x * (1.0 - POLISH), x * (1.0 + POLISH)
+    slope_a, slope_b = slope(a), slope(b)
+    if slope_a < 0.0 < slope_b:
+        return a - slope_a * (b - a) / (slope_b - slope_a)
+    if slope(low) < 0.0 < slope(high):
+        return float(brentq(slope, low, high, xtol=1e-15, rtol=1e-14))
+    return x
 
 
 def reduced_chi2(

@@ -68,8 +68,16 @@ def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0)
     numpy.ndarray
         True at the angles with psi < psi_c.
     """
-    psi_c = (1.0 + beta0) / (mu * (1.0 + e) * K) if mu > 0 else np.inf
-    return np.asarray(psi) < psi_c
+    return np.asarray(psi) < kink(mu, beta0, e, K)
+
+
+def kink(mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> float:
+    """psi_c = (1 + beta0) / (mu (1 + e) K), where Walton's beta leaves its
+    sliding line; with mu 0 the line is -1 everywhere: every angle slides
+    (infinite) where beta0 is above -1, none (0) where it is not."""
+    if mu > 0:
+        return (1.0 + beta0) / (mu * (1.0 + e) * K)
+    return np.inf if beta0 > -1.0 else 0.0
 
 
 def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.ndarray]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 
+from ground.gate import write_text
 from ground.provenance import cpu_name, machine  # noqa: F401 (the runner's machine too)
 
 
@@ -23,4 +24,4 @@ def record_wall_clock(study, seconds: float, counts: dict) -> None:
             "worker_seconds": {k: round(v, 1) for k, v in counts["worker_seconds"].items()},
             "driver_cpu_seconds": round(counts.get("driver_cpu_seconds", 0.0), 2),
         }
-        path.write_text(json.dumps(info, indent=1))
+        write_text(path, json.dumps(info, indent=1))

@@ -24,6 +24,7 @@ from analysis.statistics.fits import (
 )
 from analysis.statistics.seeds import seed_tables
 from analysis.theory.tangential import Compliant, compliant_beta, nu_for_eta, walton_beta
+from ground.digits import rounded
 from tests.synthetic import impact_rows
 
 INERTIA = 0.52  # K = 1 + 1 / 0.52 = 2.92: not the paper's 3
@@ -224,3 +225,44 @@ def test_mu_on_a_plateau_at_every_angle_has_no_upper_bound():
     # the plateau reaches the most grazing angle from the mu where the branch meets it there
     meets = (1.0 - 0.97) / ((1.0 + e_of(0.17)) * K * 0.17)
     assert 0.0 < low < 1.5 * meets
+
+
+def moved(data: Means, seed: int, ulps: int = 4) -> Means:
+    """``data`` with its means moved by a few ulps, as another CPU's sums move them."""
+    rng = np.random.default_rng(seed)
+
+    def move(a):
+        return a * (1.0 + rng.integers(-ulps, ulps + 1, a.size) * 2.0**-52)
+
+    return Means(data.psi, move(data.e), move(data.beta), move(data.beta_se))
+
+
+@pytest.mark.parametrize("truth", [(0.2, -0.75), (0.11, -0.2), (0.05, 0.4), (0.3, -0.98)])
+def test_walton_s_fit_rounds_the_same_when_its_data_move_in_their_last_bits(truth):
+    """The fit is exact (no search stopping where the last bits lead it):
+    data moved by a few ulps give the same six digits, both ways, and on a
+    plateau at every angle the least mu of the flat valley."""
+    K = 1 + 1 / INERTIA
+    data = noisy_walton(*truth, K)
+    for e, weighted in ((None, True), (0.8, False)):
+        fits = {
+            tuple(rounded(fit_walton(moved(data, s), K, e, weighted).tolist())) for s in range(8)
+        }
+        assert len(fits) == 1, fits
+
+
+def test_on_a_plateau_at_every_angle_walton_s_mu_is_the_least_that_keeps_it():
+    K = 3.0
+    data = noisy_walton(0.2, -0.98, K, noise=False)  # beta0 below every sliding branch
+    mu, beta0 = fit_walton(data, K)
+    assert beta0 == pytest.approx(-0.98, abs=1e-12)
+    least = np.max((1.0 + beta0) / ((1.0 + data.e) * K * data.psi))
+    assert mu == pytest.approx(least, rel=1e-12)
+
+
+def test_the_compliant_fit_rounds_the_same_when_its_data_move_in_their_last_bits():
+    truth = Compliant(e=0.8, mu=0.22, nu=0.29, alpha=2.9)
+    rows = impact_rows("random", lambda psi: compliant_beta(psi, truth), seeds=20, noise_sd=0.05)
+    data = means(seed_tables(rows)["random"])
+    fits = {rounded(float(fit_compliant(moved(data, s), 0.29, 2.9, 0.8)[0])) for s in range(4)}
+    assert len(fits) == 1, fits
