@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 from builder.scene import FIRST_READING, SceneSpec
+from ground.digits import rounded
 
 from ..statistics.claims import claims
 from ..statistics.estimates import study_estimates
@@ -109,7 +110,7 @@ def facts(rows: list[dict]) -> dict:
     out["chi2"] = fits["lattices"]["random"]["walton"]["paper"]["chi2"]
     out["total"], out["total_se"] = total, math.sqrt(variance)
     out["met"] = sum(out[name]["miss"] <= 1.0 for name, *_ in FACTS)
-    return out
+    return rounded(out)  # as written: equal totals tie exactly, and break by name
 
 
 def away(reading: str) -> int:
@@ -121,7 +122,7 @@ def rank_summaries(summaries: dict) -> list[str]:
     """Readings from best to worst by total miss; the best is the least, unless
     one closer to the paper's text is within one combined standard error."""
     scored = sorted(
-        (r for r in summaries if "total" in summaries[r]), key=lambda r: summaries[r]["total"]
+        (r for r in summaries if "total" in summaries[r]), key=lambda r: (summaries[r]["total"], r)
     )
     if not scored:
         return []

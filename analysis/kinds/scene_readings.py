@@ -164,7 +164,7 @@ def rank_summaries(summaries: dict) -> list[str]:
     """
     scored = sorted(
         (r for r in summaries if np.isfinite(summaries[r].get("total_miss", np.inf))),
-        key=lambda r: summaries[r]["total_miss"],
+        key=lambda r: (summaries[r]["total_miss"], r),  # equal totals: by name
     )
     if not scored:
         return []

@@ -337,7 +337,7 @@ def study_estimates(
         branch = study.branches[lattice]
         paper = entry["walton"]["paper"]
         entry["sliding_branch"] = {
-            "rule": "cot gamma below the kink of the paper's-way Walton fit, "
+            "rule": "cot gamma at or below the kink of the paper's-way Walton fit, "
             "(1 + beta0) / (mu (1 + 0.8) 3)",
             "psi_c": kink(paper["mu"], paper["beta0"], PAPER["e"], PAPER["K"]),
             "gamma_deg": [float(g) for g in table.gamma_deg[branch]],

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ground.digits import rounded
+
 from ..table import NEAR_SIDE
 from .seeds import SeedTable
 
@@ -47,7 +49,7 @@ def mu_eff(psi, e, beta, K: float) -> np.ndarray:
 
 
 def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> np.ndarray:
-    """The angles of the sliding branch: cot gamma below the kink of a Walton fit.
+    """The angles of the sliding branch: cot gamma at or below the kink of a Walton fit.
 
     Walton's beta leaves the sliding line -1 + mu (1 + e) K psi for the
     plateau beta0 at psi_c = (1 + beta0) / (mu (1 + e) K); with the paper's
@@ -66,9 +68,12 @@ def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0)
     Returns
     -------
     numpy.ndarray
-        True at the angles with psi < psi_c.
+        True at the angles with psi <= psi_c (to the written digits).
     """
-    return np.asarray(psi) < kink(mu, beta0, e, K)
+    # at or below the kink as written (ground.digits): Walton's least often
+    # puts an angle exactly on its kink, where the last bits would decide
+    written = np.array([rounded(float(p)) for p in np.ravel(psi)]).reshape(np.shape(psi))
+    return written <= rounded(float(kink(mu, beta0, e, K)))
 
 
 def kink(mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> float:
