@@ -24,7 +24,7 @@ from analysis.kinds.resolution import (
     order,
     summaries,
 )
-from analysis.statistics import extrapolation
+from analysis.statistics import extrapolation, plateau
 from analysis.statistics.estimates import CHI2_LIMIT
 from analysis.statistics.resolution_claims import CLAIMS, claims_table
 from analysis.statistics.seeds import BOOTSTRAP_FROM
@@ -237,6 +237,9 @@ def render_page(setup, rows, summary, found, shown, too_few, levels, readings, p
         ],
         walton=walton_chi2(summary),
         limits=tables.limits_table(shown),
+        friction=tables.friction_table(summary),
+        normal_from=plateau.NORMAL_FROM,
+        grazing=plateau.GRAZING,
         too_few=too_few,
         claims=[
             {"reading": r, "table": tables.claims_markdown(claims_table(summary, found, r))}

@@ -42,11 +42,21 @@ def limit_text(found: dict) -> str:
     if status == "not identified":
         levels = ", ".join(f"{n:,}" for n, _ in found["open_above"])
         lows = [low for _, low in found["open_above"]]
+        rises = ", ".join(f"{n:,}" for n in found.get("rising", []))
+        shape = (
+            f"although beta rises from grazing to normal incidence at N = {rises}, seed by "
+            "seed: not one plateau"
+            if rises
+            else "no rise of beta from grazing to normal incidence resolved"
+        )
         if found.get("of") == "mu_eff_top":
-            return f"not identified: no sliding branch at N = {levels} (beta on its plateau)"
+            return (
+                "not identified: the paper's-way fit marks no sliding branch at N = "
+                f"{levels} ({shape})"
+            )
         return (
-            f"not identified: no upper bound at N = {levels} (beta on its plateau at every "
-            f"angle; mu >= {min(lows):.3f} to {max(lows):.3f})"
+            f"not identified by Walton's weighted fit: no upper bound at N = {levels} (mu >= "
+            f"{min(lows):.3f} to {max(lows):.3f}; {shape})"
         )
     return "too few levels from 800 points"
 
@@ -197,3 +207,32 @@ def write_levels_csv(summary: dict, path: Path) -> None:
                 writer.writerow(["reading", "lattice", *header])
                 first = False
             writer.writerows([reading, lattice, *row] for row in body)
+
+
+def rise_text(rise: dict) -> str:
+    """beta near normal minus beta at grazing incidence, with what it says."""
+    if rise.get("on_plateau") is None:
+        return "-"
+    verdict = "no rise resolved" if rise["on_plateau"] else "rises"
+    interval = "" if rise["seeds"] >= 8 else f", t {rise['threshold']:.2f}"
+    return f"{pm(rise['value'], rise['sd'])} ({verdict}{interval})"
+
+
+def friction_table(summary: dict) -> str:
+    """Per reading, lattice and level from FIT_FROM: the seeds, beta's rise
+    from grazing to normal incidence and mu_eff at the most grazing angle,
+    each over the seeds (analysis.statistics.plateau)."""
+    header = ["reading", "lattice", "N", "seeds", "beta: normal - grazing"]
+    header.append("mu_eff at the most grazing angle")
+    body = []
+    for (reading, lattice, n), s in sorted(
+        summary.items(), key=lambda kv: (order(kv[0][:2]), kv[0][2])
+    ):
+        if n < FIT_FROM or "plateau" not in s:
+            continue
+        value, sd = s["values"]["mu_eff_grazing"]
+        body.append(
+            [reading, lattice, f"{n:,}", str(s["plateau"]["seeds"]), rise_text(s["plateau"])]
+            + [f"{pm(value, sd)} ({s['grazing_deg']:g} degrees)"]
+        )
+    return markdown_table(header, body)

@@ -28,6 +28,7 @@ from ..statistics.claims import SAME
 from ..statistics.estimates import PAPER, lattice_constants, study_estimates
 from ..statistics.fits import means, walton_mu_bounds
 from ..statistics.measures import GRAZING_ANGLES
+from ..statistics.plateau import beta_rise, mu_eff_grazing
 from ..statistics.seeds import seed_tables
 from .readings import Setup
 
@@ -143,6 +144,7 @@ QUANTITIES = (
     ("mu", "Walton's mu (measured way)"),
     ("beta0", "Walton's beta0 (measured way)"),
     ("mu_eff_top", "mu_eff at the sliding branch's top"),
+    ("mu_eff_grazing", "mu_eff at the most grazing angle (mu, or a lower bound of it)"),
 )
 # The quantities whose steps between resolutions are paired by seed (``limits``).
 PAIRED = ("e_normal", "e_grazing")
@@ -241,6 +243,12 @@ def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
             entry["chi2"] = {way: walton[way]["chi2"] for way in ("measured", "paper")}
             entry["errors"] = fits["errors"]
             entry["mu_bounds"] = mu_bounds(done, lattice)
+            # what the rows say with no model, seed by seed (analysis.statistics.plateau)
+            table = seed_tables(done)[lattice]
+            entry["plateau"] = beta_rise(table)
+            grazing = mu_eff_grazing(table, lattice_constants(done, lattice)[2])
+            entry["values"]["mu_eff_grazing"] = (grazing["value"], grazing["sd"])
+            entry["grazing_deg"] = grazing["gamma_deg"]
         out[(limit, lattice, n_disk)] = entry
     return out
 
@@ -267,7 +275,10 @@ def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
 # Walton's mu, each way, and mu_eff at the top of the sliding branch that
 # the paper's-way fit's kink marks: where a level's data bound that mu from
 # below only (no angle on the sliding branch), no limit is sought.
-MU_WAYS = {"mu": "measured", "mu_paper": "paper", "mu_eff_top": "paper"}
+# The paper's way is the paper's own procedure: its number and seed error
+# stand as the paper gave them, judged against the rows' own lower bound
+# (analysis.statistics.resolution_claims.contradicted), not withheld.
+MU_WAYS = {"mu": "measured", "mu_eff_top": "paper"}
 
 
 def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list[tuple]:
@@ -284,6 +295,19 @@ def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list
         and not entry["excluded"]
         and "mu_bounds" in entry
         and np.isinf(entry["mu_bounds"][MU_WAYS[quantity]][1])
+    ]
+
+
+def rising(summary: dict, limit: str, lattice: str) -> list[int]:
+    """The levels N (from extrapolation.FIT_FROM) whose beta rises, seed by
+    seed, from grazing to normal incidence (``plateau.beta_rise``): not
+    Walton's one plateau, whatever its fit's profile says of mu."""
+    return [
+        n
+        for (li, la, n), entry in sorted(summary.items())
+        if (li, la) == (limit, lattice)
+        and n >= extrapolation.FIT_FROM
+        and entry.get("plateau", {}).get("on_plateau") is False
     ]
 
 
@@ -338,6 +362,7 @@ def limits(
                     "forms": {},
                     "halvings": None,
                     "open_above": open_above,
+                    "rising": rising(summary, limit, lattice),
                     "of": q,
                 }
                 continue

@@ -16,12 +16,18 @@ every level and in the limit N -> infinity:
   with too few levels or no form that describes it is "undecided", never
   judged;
 - a level left out of the fits (analysis.kinds.resolution.excluded) is not judged;
-- Walton's mu where a level's data bound it from below only (beta on its
-  plateau at every angle: ``mu_bounds``) misses if that lower bound lies
+- Walton's mu the measured way, where a level's weighted profile bounds
+  it from below only (``mu_bounds``), misses if that lower bound lies
   beyond the claim's range and is undecided otherwise, and mu_eff at the
   sliding branch's top, whose branch the paper's-way fit marks, is
   undecided where that fit's mu is so bounded; in the limit both are
-  undecided ("not identified");
+  undecided ("not identified"). The paper's way is the paper's own
+  procedure and is judged by its number and seed error, as the paper gave
+  it; a fitted mu below the rows' own lower bound (mu_eff at the most
+  grazing angle, ``contradicted``) is said not to describe the rows;
+- mu_eff at the most grazing angle is mu or a lower bound of it: it misses
+  the claim only if it lies above the claim's range, and is undecided
+  otherwise;
 - "x > 1" (the grazing peak) meets if the interval x +- 2 errors lies above
   1, misses if below, and is undecided otherwise.
 """
@@ -44,6 +50,15 @@ CLAIMS = (
         "mu near 0.18 (mu_eff at the sliding branch's top)",
         "random",
         "mu_eff_top",
+        0.18,
+        NEAR["mu"],
+        None,
+    ),
+    (
+        "mu near 0.18 (mu_eff at the most grazing angle: mu where the disk slides there, "
+        "a lower bound of mu where it does not)",
+        "random",
+        "mu_eff_grazing",
         0.18,
         NEAR["mu"],
         None,
@@ -109,10 +124,27 @@ def level_error(entry: dict, quantity: str, way: str | None) -> tuple[float, flo
 
 
 def judge(value: float, error: float, claim: tuple) -> str:
-    _, _, _, paper, *rest = claim
+    _, _, quantity, paper, *rest = claim
     if not rest:
         return above(value, error, paper)
+    if quantity in LOWER_BOUNDS:  # a lower bound rules out only what lies below it
+        return "misses" if value - SAME * error > paper + rest[0] else "undecided"
     return verdict(value, error, paper, rest[0])
+
+
+def contradicted(entry: dict, quantity: str, value: float, error: float) -> str | None:
+    """Where a fitted mu lies below the rows' own lower bound of mu (mu_eff
+    at the most grazing angle) by more than SAME combined errors, why the
+    fit does not describe the data; else None."""
+    if quantity not in ("mu", "mu_paper") or "mu_eff_grazing" not in entry["values"]:
+        return None
+    bound, sd = entry["values"]["mu_eff_grazing"]
+    if value + SAME * math.hypot(error, sd) < bound:
+        return (
+            f"below the most grazing angle's lower bound {bound:.3f} +- {sd:.3f}: "
+            "the fit does not describe the rows"
+        )
+    return None
 
 
 def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> dict:
@@ -140,7 +172,9 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
 
 # The fit whose mu a claim rests on: Walton's, each way; mu_eff at the top
 # of the sliding branch that the paper's-way fit's kink marks.
-SLIDING_FROM = {"mu": "measured", "mu_paper": "paper", "mu_eff_top": "paper"}
+SLIDING_FROM = {"mu": "measured", "mu_eff_top": "paper"}
+# Claims whose number is a lower bound of what the paper claims.
+LOWER_BOUNDS = ("mu_eff_grazing",)
 
 
 def open_above(entry: dict, claim: tuple) -> dict | None:
@@ -207,6 +241,8 @@ def claims_table(summary: dict, limits: dict, reading: str) -> list[dict]:
                 if found
                 else None
             )
+            if found and (why := contradicted(entry, quantity, *found)):
+                cells[n]["note"] = f"{found[0]:.3f} +- {found[1]:.3f}, {why}"
         found = limits.get((reading, lattice, quantity))
         out.append(
             {

@@ -118,23 +118,33 @@ def test_readings_come_in_their_declared_order_whatever_the_hashing():
     assert len(runs) == 1
 
 
-def test_a_mu_the_data_bound_from_below_only_is_judged_by_its_bound():
-    """A level whose beta stays on its plateau (mu_bounds infinite above):
-    the fit's value (0.12 +- 0.01, which would miss 0.18) is not judged;
-    its lower bound decides a miss only where it lies beyond the claim's
-    range; in the limit such a mu is undecided."""
-    summary = {("r", "random", n): entry(16) for n in (800, 1600, 3200)}
-    summary[("r", "random", 800)]["mu_bounds"] = {"paper": (0.02, math.inf)}
-    summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.40, math.inf)}
-    summary[("r", "random", 3200)]["mu_bounds"] = {"paper": (0.11, 0.13)}
+def test_the_paper_s_way_is_judged_by_its_number_and_checked_against_the_rows_bound():
+    """The paper's own procedure gives a number (0.12 +- 0.01: undecided
+    against 0.18 +- 0.05) even where the weighted profile bounds mu from below only; where
+    the most grazing angle's mu_eff (a model-free lower bound of mu) lies
+    above it by more than two combined errors, the cell says the fit does
+    not describe the rows."""
+    summary = {("r", "random", n): entry(16) for n in (800, 1600)}
+    for level in summary.values():
+        level["mu_bounds"] = {"paper": (0.02, math.inf)}
+    summary[("r", "random", 1600)]["values"]["mu_eff_grazing"] = (0.17, 0.006)
     mu = next(c for c in claims_table(summary, {}, "r") if c["claim"] == MU[0])
-    assert mu["cells"][800]["verdict"] == "undecided"
-    assert mu["cells"][800]["note"] == "mu >= 0.020, no upper bound"
-    assert mu["cells"][1600]["verdict"] == "misses"
-    # bounded: judged by its value +- error as before (0.12 +- 0.02 reaches 0.13)
-    assert "note" not in mu["cells"][3200] and mu["cells"][3200]["verdict"] == "undecided"
-    found = {"status": "not identified", "open_above": [(800, 0.02)]}
-    assert limit_verdict(found, MU)["verdict"] == "undecided (not identified: no upper bound on mu)"
+    assert mu["cells"][800]["verdict"] == "undecided" and "note" not in mu["cells"][800]
+    assert mu["cells"][800]["value"] == 0.12  # its number, not a bound
+    assert mu["cells"][1600]["note"].startswith("0.120 +- 0.010, below the most grazing angle")
+    summary[("r", "random", 1600)]["values"]["mu_eff_grazing"] = (0.13, 0.006)  # within errors
+    mu = next(c for c in claims_table(summary, {}, "r") if c["claim"] == MU[0])
+    assert "note" not in mu["cells"][1600]
+
+
+def test_a_lower_bound_misses_only_above_the_claim_s_range():
+    bound = next(c for c in CLAIMS if c[2] == "mu_eff_grazing")
+    summary = {("r", "random", n): entry(16) for n in (800, 1600)}
+    summary[("r", "random", 800)]["values"]["mu_eff_grazing"] = (0.05, 0.01)  # far below 0.18
+    summary[("r", "random", 1600)]["values"]["mu_eff_grazing"] = (0.40, 0.01)
+    row = next(c for c in claims_table(summary, {}, "r") if c["claim"] == bound[0])
+    assert row["cells"][800]["verdict"] == "undecided"  # mu may lie anywhere above it
+    assert row["cells"][1600]["verdict"] == "misses"
 
 
 def test_mu_eff_at_a_branch_the_fit_leaves_free_is_not_judged():
