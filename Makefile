@@ -34,7 +34,7 @@ help:
 	@echo "make test-quick    the tests not marked slow (pytest -m 'not slow'), a few minutes"
 	@echo "make lint          ruff's checks and format check on the Python (pyproject.toml)"
 	@echo "make reference-logs  rewrite decks/log.*.impact.g++.1/.2 (after the paper's scene changes)"
-	@echo "make paper         the whole study of MODEL.md section 7 (6,400 impacts; resumable)"
+	@echo "make paper         the whole study of docs/model.md section 7 (6,399 impacts; resumable)"
 	@echo "make calibrate     measure E, nu and c of every lattice (calibration/materials.json)"
 	@echo "make validate      LAMMPS against the in-house reference integrator, thirteen scenes"
 	@echo "make bench         run time against error of integrators and time steps"

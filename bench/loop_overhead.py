@@ -3,7 +3,7 @@
     python bench/loop_overhead.py [--repeats 5] [--gamma 30] [--seed 1]
                                   [--respa 0.004/2 0.01/5] [--before f233bf1] [--docs]
 
-On one scene of the default reading (MODEL.md section 8; random disk), the
+On one scene of the default reading (docs/model.md section 8; random disk), the
 same time of the impact (the S steps it takes at the default dt) for:
 
   (a) the springs only (bench/contact_cost.lmp, contact none), and the same

@@ -1,4 +1,4 @@
-"""Is the surface roughness still MODEL.md's, now that every seed builds?
+"""Is the surface roughness still docs/model.md's, now that every seed builds?
 
     python bench/roughness.py [--seeds 100] [--first-seed 1] [--write [--docs]]
 

@@ -33,7 +33,7 @@ POISSON_FILL = 0.61
 # keeps every surface segment a Delaunay edge, and keeps the circumcircles of
 # the cells of a regular interior free of surface points.
 CLEARANCE = 0.75
-# Longest spring kept, in spacings. MODEL.md section 2 prunes at "about twice"
+# Longest spring kept, in spacings. docs/model.md section 2 prunes at "about twice"
 # the spacing to remove the hull triangles across dips; here the outline test
 # in ``network`` removes those exactly, and this is only a safety net. Real
 # springs exceed 2 spacings at the surface, because the roughness (std 0.45
@@ -177,7 +177,7 @@ def assemble(
     return Body(points, role, springs, stiffness, surface, spacing, steep=steep)
 
 
-# The readings of the model's surfaces (MODEL.md section 8): the roughness
+# The readings of the model's surfaces (docs/model.md section 8): the roughness
 # along the surface normal or in both directions; the disk's surface row
 # evenly spaced or at random on the circle; a regular disk's surface a random
 # row joined to the lattice by a band of springs, or the lattice's own outermost
@@ -186,7 +186,7 @@ ROUGHNESS_DIRECTIONS = ("normal", "both")
 SURFACE_ROWS = ("even", "random")
 REGULAR_SURFACES = ("band", "lattice")
 # A random surface row keeps this distance, in spacings, between neighbours
-# (a Poisson-disk sample on the circle, MODEL.md section 1). It gives the even
+# (a Poisson-disk sample on the circle, docs/model.md section 1). It gives the even
 # row's number of points on average: 93 for an 800-point disk, measured over
 # 60 seeds with scipy 1.17 (0.66 gave 94.4, 0.68 gave 91.4).
 ROW_MIN_DISTANCE = 0.67

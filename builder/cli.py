@@ -23,7 +23,7 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-# The readings of the model (MODEL.md section 8), SceneSpec's fields by option.
+# The readings of the model (docs/model.md section 8), SceneSpec's fields by option.
 MODEL_OPTIONS = {name: SCENE[name].option for name in MODEL_READINGS}
 # SceneSpec's fields by the options that set them, for messages the user can act on.
 OPTIONS = {option.name: option.option for option in SCENE_OPTIONS if option.cli}
@@ -38,13 +38,13 @@ def add_option(group, option: Option, study: bool = False) -> None:
 
 
 def add_model_arguments(group, study: bool = False) -> None:
-    """The readings of the model (MODEL.md section 8)."""
+    """The readings of the model (docs/model.md section 8)."""
     for name in MODEL_READINGS:
         add_option(group, SCENE[name], study)
 
 
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
-    """The options that define a scene (MODEL.md sections 1, 2 and 4)."""
+    """The options that define a scene (docs/model.md sections 1, 2 and 4)."""
     group = parser.add_argument_group("scene")
     square = group.add_mutually_exclusive_group()
     for option in SCENE_OPTIONS:
@@ -59,7 +59,9 @@ def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
         f"{NU.describe()}; a scene needs the ratio calibrated (0.1 and 0.3 are; "
         "python -m calibration run --square K2_OVER_K1 adds one)",
     )
-    add_model_arguments(parser.add_argument_group("the readings of the model (MODEL.md section 8)"))
+    add_model_arguments(
+        parser.add_argument_group("the readings of the model (docs/model.md section 8)")
+    )
 
 
 def validate_spec(spec) -> None:

@@ -1,7 +1,7 @@
 """The pair variant of the contact as a LAMMPS ``pair_style table`` file.
 
 E(r) = V0 exp(-a r) between a disk surface point and a wall surface point at
-distance r (MODEL.md section 2, the design card). The table starts at a small
+distance r (docs/model.md section 2, the design card). The table starts at a small
 inner distance: a pair closer than that means a disk point has gone into the
 wall, and LAMMPS stops with "Pair distance < table inner cutoff".
 """

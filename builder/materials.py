@@ -22,7 +22,7 @@ TABLE = ROOT / "calibration" / "materials.json"
 
 
 def square_poisson_ratio(k2_over_k1: float, angle_deg: float = 0.0) -> float:
-    """Poisson ratio of the square lattice pulled along (cos a, sin a) (MODEL.md).
+    """Poisson ratio of the square lattice pulled along (cos a, sin a) (docs/model.md).
 
     Parameters
     ----------

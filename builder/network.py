@@ -61,7 +61,7 @@ def triangulate_body(
     the convex hull, so a rough or non-convex body gets triangles across the
     dips of its outline; those lie outside the outline polygon and are
     dropped, and so are triangles with an edge longer than ``max_length``
-    (MODEL.md section 2).
+    (docs/model.md section 2).
 
     If that leaves an outline segment without its triangle (a steep step of
     the roughness) or a point without a spring, the body is triangulated

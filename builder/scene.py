@@ -29,14 +29,14 @@ TYPE_NAMES = {
     WALL_FIXED: "wall fixed",
 }
 WALL_FIXED_CHOICES = ("sides", "sides+bottom", "all")
-# The readings of the wall that the paper leaves open (MODEL.md section 8):
+# The readings of the wall that the paper leaves open (docs/model.md section 8):
 # n_wall is a number of points or "density" (the disk's number density), and
 # wall_ka is the wall's spring constant over the random disk's (``wall_spring_constant``),
 # or "same-c" (the ka that gives the wall the wave speed c). Neither depends on
 # the disk's lattice, so that every lattice of a study meets the same wall.
 WALL_DENSITY = "density"
 WALL_SAME_C = "same-c"
-# The readings of the model (MODEL.md section 8), each a SceneSpec field: its
+# The readings of the model (docs/model.md section 8), each a SceneSpec field: its
 # choices, the one this project first read the paper's text as first. The
 # default (SceneSpec) is the rule's pick, which may be another.
 MODEL_READINGS = {
@@ -456,7 +456,7 @@ def wall_spring_constant(spec: SceneSpec) -> tuple[float, float, dict]:
 
     The unit of ``wall_ka`` is the random disk's ka: the ka that gives a random
     lattice at the disk's number density (n_disk points in pi R^2) the wave speed
-    c. For the random disk it is the disk's own ka, so ``wall_ka`` = 1 is MODEL.md's
+    c. For the random disk it is the disk's own ka, so ``wall_ka`` = 1 is docs/model.md's
     "one ka for every spring of both bodies"; the triangular and square disks meet
     the random disk's wall. "same-c": the ka that gives the wall, a random lattice
     at its own spacing, the wave speed c.
@@ -488,14 +488,14 @@ def wall_spring_constant(spec: SceneSpec) -> tuple[float, float, dict]:
 def speed_unit(spec: SceneSpec, spacing: float, ka_disk: float) -> float:
     """The unit of ``spec.vn`` in units of c: c itself, or with ``speed_unit``
     "spring" the one-dimensional sound speed of the disk's springs, d sqrt(ka / m),
-    d the disk's nominal spacing (MODEL.md section 8; m = 1)."""
+    d the disk's nominal spacing (docs/model.md section 8; m = 1)."""
     if spec.speed_unit == "spring":
         return float(spacing * np.sqrt(ka_disk))
     return 1.0
 
 
 def contact_energy(spec: SceneSpec, disk_points: int) -> float:
-    """The contact's V0 = a m c^2 R / 2 (MODEL.md section 2), m one point's mass
+    """The contact's V0 = a m c^2 R / 2 (docs/model.md section 2), m one point's mass
     or, with ``contact_mass`` "disk", the disk's (m = c = 1; a R = contact_a).
 
     With ``contact_scaling`` "spacing" V0 is that times the resolution scale,

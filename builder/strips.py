@@ -1,4 +1,4 @@
-"""Strips of each lattice for the material calibration (MODEL.md section 3).
+"""Strips of each lattice for the material calibration (docs/model.md section 3).
 
 A strip is L x W spacings, pulled along x by grips at its two ends, with free
 long sides. Lengths are in units of the spacing d, and ka = m = 1: the

@@ -1,1 +1,1 @@
-"""Measures E, the Poisson ratio and the wave speed of each lattice (MODEL.md section 3)."""
+"""Measures E, the Poisson ratio and the wave speed of each lattice (docs/model.md section 3)."""

@@ -1,4 +1,4 @@
-"""The study's figures (MODEL.md section 7), from the means and the fits."""
+"""The study's figures (docs/model.md section 7), from the means and the fits."""
 
 from __future__ import annotations
 

@@ -28,6 +28,7 @@ from analysis.statistics import extrapolation, plateau
 from analysis.statistics.estimates import CHI2_LIMIT
 from analysis.statistics.resolution_claims import CLAIMS, claims_table
 from analysis.statistics.seeds import BOOTSTRAP_FROM
+from ground.digits import rounded
 from ground.gate import write_figure
 
 from . import resolution_tables as tables
@@ -106,7 +107,7 @@ def draw_curves(rows: list[dict], path: Path) -> None:
     ]
     fig, axes = plt.subplots(2, len(panels), figsize=(4.2 * len(panels), 7), squeeze=False)
     for column, (limit, lattice) in enumerate(panels):
-        curves = means_by_angle(rows, limit, lattice)
+        curves = rounded(means_by_angle(rows, limit, lattice))  # drawn as written
         colours = plt.cm.viridis(np.linspace(0, 0.9, max(len(curves), 1)))
         for colour, (n, points) in zip(colours, curves.items(), strict=True):
             cot, e, e_se, beta, beta_se = (np.array(v) for v in zip(*points, strict=True))
@@ -139,7 +140,7 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
     for ax, q in zip(axes, shown, strict=True):
         for limit, lattice in sorted({(k[0], k[1]) for k in summary}, key=order):
             points = [
-                (n, *s["values"][q], bool(s["excluded"]))
+                (n, *rounded(s["values"][q]), bool(s["excluded"]))  # drawn as written
                 for (li, la, n), s in sorted(summary.items())
                 if (li, la) == (limit, lattice) and q in s["values"]
             ]
@@ -151,7 +152,7 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
             colour = line[0].get_color()
             if out.any():
                 ax.plot(h[out], v[out], "x", color="k", ms=8)
-            fit = found[(limit, lattice, q)]
+            fit = rounded(found[(limit, lattice, q)])
             x = np.linspace(0.0, 1.0, 30)
             for form, style in (("h", ":"), ("h2", "--")) if fit["status"] == "limit" else ():
                 f = fit["forms"].get(form)

@@ -1,4 +1,4 @@
-"""The point-to-polyline contact of MODEL.md section 2, vectorised with numpy."""
+"""The point-to-polyline contact of docs/model.md section 2, vectorised with numpy."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Coefficients of restitution from the disk's motion before and after impact.
 
-Conventions of MODEL.md section 5: wall normal +y, tangent +x, incoming
+Conventions of docs/model.md section 5: wall normal +y, tangent +x, incoming
 tangential velocity positive; the contact point is the bottom of the disk, so
 its tangential velocity is V_x + R omega_z.
 """

@@ -1,5 +1,5 @@
 """The readings of the model crossed with the best walls, ranked against the
-paper's five facts (MODEL.md section 8; studies/model_readings.toml,
+paper's five facts (docs/model.md section 8; studies/model_readings.toml,
 docs/studies/model_readings/model_readings.md).
 
 Per reading, the five facts with their seed-bootstrap errors

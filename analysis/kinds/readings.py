@@ -1,4 +1,4 @@
-"""The readings of the scene by name (MODEL.md section 8), and the rows, table
+"""The readings of the scene by name (docs/model.md section 8), and the rows, table
 and page frame that the readings studies share (studies/scene_readings.toml,
 model_readings.toml, fact_sensitivity.toml; their pages: analysis.kinds).
 

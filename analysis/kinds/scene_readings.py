@@ -1,5 +1,6 @@
 """The readings of the wall side by side against the paper's facts
-(MODEL.md section 8; studies/scene_readings.toml, docs/studies/scene_readings/scene_readings.md).
+(docs/model.md section 8; studies/scene_readings.toml,
+docs/studies/scene_readings/scene_readings.md).
 
 Per reading: mean e in three bands of cot gamma with standard errors, Walton's
 mu and beta0 with chi2/dof, the median first-to-last contact time and number
@@ -20,7 +21,7 @@ from ..table import NEAR_SIDE, mean_rows
 from ..theory.tangential import walton_beta
 from .readings import Setup, distance_from_text, wall_label
 
-# The paper's three facts (MODEL.md section 8) and how near counts as agreeing:
+# The paper's three facts (docs/model.md section 8) and how near counts as agreeing:
 # e near 0.8 (its Walton fit fixes e = 0.8), beta0 near 0.56, and no contact
 # running off the wall (the study's own rule: at most a tenth of the contacts
 # within 1 R of a fixed side, table.NEAR_SIDE_SHARE).

@@ -1,7 +1,7 @@
 """Does the wall's width change grazing impacts? (studies/wall_width.toml,
 docs/studies/wall_width/wall_width.md)
 
-At grazing angles the disk slides several R during contact, and on MODEL.md's
+At grazing angles the disk slides several R during contact, and on docs/model.md's
 8 R wall its centre can pass an end of the wall, where the wall is held,
 before the contact is over. The study runs each seed and angle on every
 width; the page gives, per angle and width, the mean and standard error of e

@@ -1,10 +1,10 @@
-"""The paper's claims against a study's numbers (MODEL.md section 8).
+"""The paper's claims against a study's numbers (docs/model.md section 8).
 
 Each fact the paper reports is set beside the project's number measured the
 paper's way (its fitting procedure) and model-free, each with its error, and
 gets a verdict computed by a stated rule:
 
-- a fact "x is near v" (what counts as near: MODEL.md section 8's unit of
+- a fact "x is near v" (what counts as near: docs/model.md section 8's unit of
   that fact) **meets** if the interval x +- 2 errors lies inside v +- near,
   **misses** if it lies wholly outside, and is **undecided** otherwise;
 - a fact "a equals b" (no unit: the paper says "the same") **meets** if
@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 
-# What counts as near (MODEL.md section 8). The triangular disk's share of
+# What counts as near (docs/model.md section 8). The triangular disk's share of
 # angles with beta > 0 has no unit there: a tenth of the angles is this page's.
 NEAR = {"e": 0.1, "mu": 0.05, "beta0": 0.2, "share_beta_positive": 0.1, "near_side": 0.1}
 # The rules' numbers of errors (module docstring): within SAME errors a

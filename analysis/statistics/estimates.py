@@ -2,7 +2,7 @@
 angle, both fits of both theories, the fits' spread over fitting choices, the
 model-free measures and the comparison of the two square lattices.
 
-MODEL.md section 6 asks for two fits of each theory:
+docs/model.md section 6 asks for two fits of each theory:
 
 - **the paper's way**: Walton with e fixed at 0.8 and K = 3, the compliant
   model with eta = 1.015, alpha = 3.02 and e = 0.8 (mu free), both by
@@ -35,7 +35,7 @@ from .fits import Means, compliant_curve, fit_compliant, fit_walton, means, redu
 from .measures import kink, measures, sliding_branch
 from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_errors, seed_tables
 
-# The paper's fits (MODEL.md sections 6 and 8).
+# The paper's fits (docs/model.md sections 6 and 8).
 PAPER = {"e": 0.8, "K": 3.0, "eta": 1.015, "alpha": 3.02}
 # A fit whose reduced chi^2 is above this does not describe the data.
 CHI2_LIMIT = 2.0

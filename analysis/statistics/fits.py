@@ -1,4 +1,4 @@
-"""Fits of the theories to the per-angle means of beta(psi) (MODEL.md section 6).
+"""Fits of the theories to the per-angle means of beta(psi) (docs/model.md section 6).
 
 A fit takes the means per angle (``Means``) and either weights each angle by
 the standard error of its mean of beta (``weighted=True``) or weights every

@@ -1,4 +1,4 @@
-"""Model-free measures of a lattice's rebound (MODEL.md section 6).
+"""Model-free measures of a lattice's rebound (docs/model.md section 6).
 
 They describe the data where the theories do not, each from the per-angle
 means (every angle counts alike), and get their errors from the seed

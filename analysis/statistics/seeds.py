@@ -1,4 +1,4 @@
-"""A study's impacts by seed, and the seed bootstrap (MODEL.md section 6).
+"""A study's impacts by seed, and the seed bootstrap (docs/model.md section 6).
 
 One seed's disk and wall serve every angle of a study (and, on a common wall,
 every lattice's wall), so the impacts of one seed are not independent of each

@@ -1,4 +1,4 @@
-"""Theories of the tangential restitution beta(psi), psi = cot gamma (MODEL.md section 6).
+"""Theories of the tangential restitution beta(psi), psi = cot gamma (docs/model.md section 6).
 
 Walton: beta = min(beta0, -1 + mu (1 + e) K psi).
 

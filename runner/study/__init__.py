@@ -1,4 +1,4 @@
-"""The study of MODEL.md section 7: lattices x angles x samples, resumable.
+"""The study of docs/model.md section 7: lattices x angles x samples, resumable.
 
 A study is plain data (``Study``): its grid, its scene and its run. Its
 impacts' folders follow runner/study/folders.py's protocol; the study files of

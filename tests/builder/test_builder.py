@@ -1,4 +1,4 @@
-"""The lattices and scenes the builder makes (MODEL.md section 1)."""
+"""The lattices and scenes the builder makes (docs/model.md section 1)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Every disk lattice of a study meets the same wall (MODEL.md section 8).
+"""Every disk lattice of a study meets the same wall (docs/model.md section 8).
 
 The wall's points, springs and spring constant depend on the seed and the
 wall's own reading only, so the wall's part of scene.data (its atoms, their

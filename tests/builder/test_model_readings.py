@@ -1,4 +1,4 @@
-"""The readings of the model (MODEL.md section 8) change the scene as specified.
+"""The readings of the model (docs/model.md section 8) change the scene as specified.
 
 Each reading is an option of the builder, the impact and the study; here each
 one is checked on the scene it builds: the contact's V0, the velocity's scale,

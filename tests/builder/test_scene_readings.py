@@ -1,4 +1,4 @@
-"""The readings of the wall (MODEL.md section 8): options, what each builds, the default."""
+"""The readings of the wall (docs/model.md section 8): options, what each builds, the default."""
 
 from __future__ import annotations
 
@@ -68,7 +68,7 @@ def test_held_points_are_the_reading_s(wall_fixed, rows):
 
 
 def test_the_default_scene_is_the_chosen_reading():
-    """The rule's pick of MODEL.md section 8 (docs/studies/model_readings/model_readings.md,
+    """The rule's pick of docs/model.md section 8 (docs/studies/model_readings/model_readings.md,
     docs/model.md): 1600 wall points, ten times the random disk's ka, the sides
     held, V0 from the disk's mass; every study of a results page and the command
     line run it (the readings studies run the others on purpose)."""

@@ -71,7 +71,7 @@ def rotated_shear_modulus(c11: float, c12: float, c66: float, angle_deg: float) 
 @pytest.mark.parametrize("ratio", [1.0 / 9.0, 3.0 / 7.0, 1.0])
 def test_square_moduli_closed_forms(ratio):
     """G and B of the square lattice: known values, the stiffness tensor turned
-    by tensor algebra, and E / (2 (1 +- nu)) from MODEL.md's nu along the mirror lines."""
+    by tensor algebra, and E / (2 (1 +- nu)) from docs/model.md's nu along the mirror lines."""
     assert square_shear_modulus(ratio, 0.0) == pytest.approx(ratio, rel=1e-12)  # C66 = k2
     assert square_shear_modulus(ratio, 45.0) == pytest.approx(0.5, rel=1e-12)  # k1 / 2
     for angle in (0.0, 10.0, 22.5, 30.0, 45.0, 80.0):

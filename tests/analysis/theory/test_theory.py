@@ -1,4 +1,4 @@
-"""The theories of beta(psi) (MODEL.md section 6); their fits are in test_fits.py."""
+"""The theories of beta(psi) (docs/model.md section 6); their fits are in test_fits.py."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The readings studies (studies/scene_readings.toml, model_readings.toml,
 fact_sensitivity.toml; analysis/kinds/__init__.py): their files are the studies that
 made the committed tables, their pages come from those tables byte for byte,
-their rules rank as MODEL.md section 8 says, and a small one runs."""
+their rules rank as docs/model.md section 8 says, and a small one runs."""
 
 from __future__ import annotations
 

@@ -27,7 +27,7 @@ def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
 
 
 def test_the_papers_grid():
-    """MODEL.md section 7: four lattices, 16 angles, 100 samples at 0.1 c."""
+    """docs/model.md section 7: four lattices, 16 angles, 100 samples at 0.1 c."""
     paper = load_study("paper")
     assert len(paper.jobs()) == 4 * 16 * 100 and paper.vn == 0.1
     pages = built_in_pages()[0]
