@@ -137,9 +137,11 @@ def main(argv: list[str] | None = None) -> int:
             check_launch(options)
             results = [run_scene(args.scene, options)]
         elif args.command == "page":
-            return remake_page(args)
+            with stop_on_signals():  # every file whole or not at all (ground.gate.atomic)
+                return remake_page(args)
         elif args.command == "tilt":
-            print(f"wrote {shown(wall_tilt(args))}")
+            with stop_on_signals():
+                print(f"wrote {shown(wall_tilt(args))}")
             return 0
         else:
             with stop_on_signals():
@@ -148,11 +150,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"python -m runner: error: {error}{unstable_hint(error, args)}", file=sys.stderr)
         return 2 if isinstance(error, InputError) else 1
     except Stopped as stop:
-        print(
-            f"python -m runner: stopped by {stop}, workers ended; the same command resumes "
-            f"the study",
-            file=sys.stderr,
-        )
+        after = {
+            "page": "no file half-written; the same command makes the page again",
+            "tilt": "no file half-written; the same command starts again",
+        }.get(args.command, "workers ended; the same command resumes the study")
+        print(f"python -m runner: stopped by {stop}, {after}", file=sys.stderr)
         return 128 + stop.signum
     except OSError as error:  # a full disk, a read-only folder, a dangling link
         print(f"python -m runner: error: {os_error_line(error)}", file=sys.stderr)
