@@ -1,5 +1,5 @@
 """Names a study file may give, as plain data: the readings of the scene by
-name (MODEL.md section 8), the kinds of page and the sections of a results
+name (docs/model.md section 8), the kinds of page and the sections of a results
 page. Reading a study file (runner.study.file) checks its names against
 these without importing what makes the pages (analysis.kinds,
 pages.sections, analysis.kinds.readings use them from here).
@@ -18,6 +18,7 @@ READINGS_KINDS = (
     "model_readings",
     "fact_sensitivity",
     "wall_width",
+    "grazing_wall",
     "resolution",
     "references",
 )

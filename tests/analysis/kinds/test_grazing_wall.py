@@ -206,5 +206,5 @@ def test_the_page_states_the_verdicts_and_the_continuum(tmp_path):
         "- **sides** (a clamped beam of span W and thickness 2 R): changes with its width" in text
     )
     assert "an elastic layer of thickness 2 R on a rigid base" in text
-    assert f"sides+bottom, 8 R, 85 degrees: 1 impact, {SLID} (seeds 3)" in text
+    assert f"sides+bottom, 8 R, 85 degrees: 1 impact, {SLID} (seed 3)" in text
     assert text.count("| sides+bottom | 8 to 16 |") == len(GAMMAS)
