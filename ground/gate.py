@@ -18,6 +18,8 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import stat
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -100,15 +102,21 @@ def atomic(path: Path | str, what: str = "") -> Iterator[Path]:
     write; renamed over ``path`` when the block ends, removed if it fails
     or is interrupted. A cut or interrupted write leaves the old file whole,
     and an error of the disk names the file it was writing."""
-    path = gate(path, what)
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    gate(path, what)
+    # the file the path leads to (a link is written through, as the gate
+    # checked it), replaced with the old file's permissions
+    target = real(path)
+    temporary = target.with_name(f".{target.name}.{os.getpid()}.{threading.get_ident()}.tmp")
     try:
         yield temporary
-        os.replace(temporary, path)
+        if target.exists():
+            os.chmod(temporary, stat.S_IMODE(target.stat().st_mode))
+        os.replace(temporary, target)
     except BaseException as error:
         temporary.unlink(missing_ok=True)
         if isinstance(error, OSError):  # a full disk's error names no file: this one
-            error.filename = str(path)
+            if error.filename in (None, str(temporary)):
+                error.filename = str(path)
         raise
 
 

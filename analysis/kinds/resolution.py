@@ -249,6 +249,9 @@ def summaries(rows: list[dict]) -> dict[tuple[str, str, int], dict]:
             grazing = mu_eff_grazing(table, lattice_constants(done, lattice)[2])
             entry["values"]["mu_eff_grazing"] = (grazing["value"], grazing["sd"])
             entry["grazing_deg"] = grazing["gamma_deg"]
+            # the same bound as the paper's way writes mu (e 0.8, K 3)
+            paper = mu_eff_grazing(table, PAPER["K"], PAPER["e"])
+            entry["mu_eff_grazing_paper"] = (paper["value"], paper["sd"])
         out[(limit, lattice, n_disk)] = entry
     return out
 

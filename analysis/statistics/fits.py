@@ -162,9 +162,14 @@ def walton_candidates(
         beta0 = plateau_y / plateau_w
     mu[0] = (1.0 + beta0[0]) / slope[0]
     beta0[-1] = mu[-1] * slope[-1] - 1.0
-    # kinks: angle j on it, every angle's model mu min(slope_i, slope_j) - 1
+    # kinks: angle j on it, every angle's model mu min(slope_i, slope_j) - 1;
+    # mu clipped to the bounds along the kink line before beta0 follows it,
+    # so that a least beyond a bound becomes the corner on that line
     capped = np.minimum(slope[None, :], slope[:, None])
-    on_kink = (capped * weight * (beta + 1.0)).sum(axis=1) / (capped**2 * weight).sum(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        on_kink = (capped * weight * (beta + 1.0)).sum(axis=1) / (capped**2 * weight).sum(axis=1)
+        highest = np.minimum(MU_HIGH, (1.0 + BETA0_BOUNDS[1]) / slope)
+    on_kink = np.clip(np.nan_to_num(on_kink, nan=0.0), 0.0, highest)
     mu = np.concatenate([mu, on_kink])
     beta0 = np.concatenate([beta0, on_kink * slope - 1.0])
     mu = np.clip(np.nan_to_num(mu, nan=0.0), 0.0, MU_HIGH)

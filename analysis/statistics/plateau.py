@@ -23,6 +23,8 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
+from ground.digits import rounded
+
 from .seeds import SeedTable
 
 NORMAL_FROM = 1.0  # cot gamma: near normal incidence
@@ -63,17 +65,22 @@ def beta_rise(table: SeedTable) -> dict:
     with np.errstate(invalid="ignore"):
         per_seed = np.nanmean(beta[:, normal], axis=1) - np.nanmean(beta[:, grazing], axis=1)
     out = over_seeds(per_seed)
-    real = out["seeds"] > 1 and abs(out["value"]) > out["threshold"] * out["sd"]
+    # decided on the numbers as written (ground.digits), as every verdict
+    value, sd = rounded(out["value"]), rounded(out["sd"])
+    real = out["seeds"] > 1 and abs(value) > out["threshold"] * sd
     out["on_plateau"] = None if out["seeds"] < 2 else not real
     return out
 
 
-def mu_eff_grazing(table: SeedTable, K: float) -> dict:
+def mu_eff_grazing(table: SeedTable, K: float, e: float | None = None) -> dict:
     """mu_eff = (1 + beta) / ((1 + e) K cot gamma) at the most grazing angle,
-    over the seeds (``over_seeds``), with that angle's ``gamma_deg``."""
+    over the seeds (``over_seeds``), with that angle's ``gamma_deg``; e the
+    measured one, or a fixed ``e`` (the paper's way of fitting: 0.8 with K
+    3), so that it bounds the mu of a fit made that way."""
     cot = table.values["cot_gamma"]
     j = int(np.argmin(table.mean("cot_gamma")))
-    beta, e = table.values["beta"][:, j], table.values["e"][:, j]
-    out = over_seeds((1.0 + beta) / ((1.0 + e) * K * cot[:, j]))
+    beta = table.values["beta"][:, j]
+    e_values = table.values["e"][:, j] if e is None else e
+    out = over_seeds((1.0 + beta) / ((1.0 + e_values) * K * cot[:, j]))
     out["gamma_deg"] = float(table.gamma_deg[j])
     return out

@@ -38,6 +38,8 @@ import math
 
 from scipy import stats
 
+from ground.digits import rounded
+
 from .claims import NEAR, SAME, verdict
 from .estimates import CHI2_LIMIT
 from .seeds import error_method, interval_factor
@@ -128,18 +130,24 @@ def judge(value: float, error: float, claim: tuple) -> str:
     if not rest:
         return above(value, error, paper)
     if quantity in LOWER_BOUNDS:  # a lower bound rules out only what lies below it
-        return "misses" if value - SAME * error > paper + rest[0] else "undecided"
+        return "misses" if rounded(value - SAME * error) > paper + rest[0] else "undecided"
     return verdict(value, error, paper, rest[0])
 
 
 def contradicted(entry: dict, quantity: str, value: float, error: float) -> str | None:
     """Where a fitted mu lies below the rows' own lower bound of mu (mu_eff
-    at the most grazing angle) by more than SAME combined errors, why the
-    fit does not describe the data; else None."""
-    if quantity not in ("mu", "mu_paper") or "mu_eff_grazing" not in entry["values"]:
+    at the most grazing angle, written as the fit writes mu: the measured e
+    and K, or the paper's e 0.8 and K 3) by more than SAME combined errors,
+    why the fit does not describe the data; else None. Decided on the
+    numbers as written (ground.digits)."""
+    where = {
+        "mu": entry["values"].get("mu_eff_grazing"),
+        "mu_paper": entry.get("mu_eff_grazing_paper"),
+    }
+    if not where.get(quantity):
         return None
-    bound, sd = entry["values"]["mu_eff_grazing"]
-    if value + SAME * math.hypot(error, sd) < bound:
+    bound, sd = rounded(where[quantity])
+    if rounded(value + SAME * math.hypot(error, sd)) < bound:
         return (
             f"below the most grazing angle's lower bound {bound:.3f} +- {sd:.3f}: "
             "the fit does not describe the rows"

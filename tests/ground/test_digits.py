@@ -50,3 +50,16 @@ def test_a_write_is_whole_or_not_at_all(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["fits.json"]
     write_text(path, "new\n")
     assert path.read_text() == "new\n"
+
+
+def test_a_write_goes_through_a_link_and_keeps_the_file_s_permissions(tmp_path):
+    """The gate checks where a link leads; the write lands there too (not
+    on the link, which stays a link), and the file keeps its mode."""
+    target = tmp_path / "page.md"
+    target.write_text("old\n")
+    target.chmod(0o640)
+    link = tmp_path / "link.md"
+    link.symlink_to(target)
+    write_text(link, "new\n")
+    assert link.is_symlink() and target.read_text() == "new\n"
+    assert target.stat().st_mode & 0o777 == 0o640
