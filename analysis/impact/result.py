@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from pathlib import Path
 
 from builder.run_options import MAX_DRIFT
 from builder.scene import MODEL_READINGS
-from ground.gate import gate
+from ground.gate import write_text
 
 from .barrier import barrier_counts
 from .binary import binary_energy_split, binary_normals, binary_rebound, momentum_change
@@ -240,15 +238,7 @@ def _finite(value) -> bool:
 
 
 def write_json_atomically(data: dict, path: Path | str) -> None:
-    """Write JSON so that a reader sees either nothing or the whole file."""
-    path = gate(path)  # the one gate of every write (ground.gate)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    try:
-        with os.fdopen(fd, "w") as handle:
-            json.dump(data, handle, indent=1, sort_keys=True)
-            handle.write("\n")
-        os.replace(tmp, path)
-    except OSError as error:  # a full disk: no half file left, and the file named
-        Path(tmp).unlink(missing_ok=True)
-        error.filename = error.filename or str(path)
-        raise
+    """Write JSON so that a reader sees either nothing or the whole file
+    (ground.gate.write_text, the one gate and atomic write of every file);
+    every digit kept: a result is a measurement, not a page's number."""
+    write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")

@@ -32,7 +32,7 @@ from analysis.kinds.readings import (
 from analysis.table import TIMINGS
 from ground.checks import require_out_folder
 from ground.errors import InputError
-from ground.gate import make_folder
+from ground.gate import make_folder, write_text
 from ground.paths import study_docs
 from ground.provenance import git_revision
 from pages.kinds import readings_page
@@ -183,7 +183,7 @@ def run_readings_study(args: argparse.Namespace, described: StudyFile, cluster) 
         # every impact as the table had it: the provenance stays that of the run that made it
         for name in (RECORD, TIMINGS):
             if name in before:
-                (out / name).write_bytes(before[name])
+                write_text(out / name, before[name].decode())
     page = out / f"{described.page or name}.md" if args.docs else out / f"{name}.md"
     readings_page(described.kind, out, page, setup)
     failed = sum(bool(r.get("error")) and impact_state(r["error"]) == "failed" for r in rows)
