@@ -24,6 +24,9 @@ import json
 import sys
 from pathlib import Path
 
+from analysis.impact.result import BINARY_FINITE
+from analysis.table import BINARY_COLUMNS, COLUMNS
+
 # numpy 2's names of the dispatched x86 features (``numpy.show_runtime()``):
 # everything above the baseline X86_V2 (SSE4.2) off, and OpenBLAS's oldest
 # AVX kernels instead of the machine's own. Set before numpy is imported.
@@ -31,27 +34,18 @@ OLDER_CPU = {
     "NPY_DISABLE_CPU_FEATURES": "X86_V3 X86_V4 AVX512_ICL AVX512_SPR",
     "OPENBLAS_CORETYPE": "Sandybridge",
 }
-# The columns a machine measures (a LAMMPS run's outcome); the grid's own
-# numbers (angles, speeds, seeds) are the same text on every machine.
-MEASURED = (
-    "e",
-    "beta",
-    "omega",
-    "contact_time",
-    "vibration_disk",
-    "vibration_wall",
-    "energy_drift",
-    "side_clearance",
-    "disk_inertia_ratio",
-    "momentum_change",
-    "angular_momentum_change",
-    "e_first_touch",
-    "beta_first_touch",
-    "e_impulse",
-    "beta_impulse",
-    "apse_angle_deg",
-    "impulse_tilt_deg",
-    "wall_seconds",
+# The columns a machine measures: what a run writes into result.json
+# (analysis.impact.result's finite numbers, the two-disk normals of
+# analysis.table.BINARY_COLUMNS) but the grid's own numbers, which are the
+# same text on every machine (the seed, the angle asked for, the material's
+# nu from the committed calibration, the step count).
+GRID = ("seed", "gamma_deg", "nu", "steps", "cot_gamma_nominal", "target_held")
+MEASURED = tuple(
+    dict.fromkeys(
+        k
+        for k in (*BINARY_FINITE, "side_clearance", *BINARY_COLUMNS[len(COLUMNS) :])
+        if k not in GRID and k not in ("target", "partner_lattice")
+    )
 )
 EPS = 2.0**-52
 READ_MARK = "tables read: "

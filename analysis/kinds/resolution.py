@@ -266,7 +266,7 @@ def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
     (``analysis.statistics.fits.walton_mu_bounds``: within MU_RISE of the
     least chi^2, the means weighted by their errors, which say what the data
     can tell apart, also for the paper's unweighted way); infinite above
-    where beta is on its plateau at every angle."""
+    where the weighted fit puts no angle on its sliding branch."""
     data = means(seed_tables(done)[lattice])
     K = lattice_constants(done, lattice)[2]
     return {

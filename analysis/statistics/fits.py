@@ -321,7 +321,7 @@ def fit_compliant(
 
 def least_of_smooth(cost, low: float, high: float) -> float | None:
     """Where a smooth cost of one positive parameter is least inside (low,
-    high), to its last bits; None if it is least at an end.
+    high); None if it is least at an end.
 
     A search on the cost's values (Brent's, ``minimize_scalar``) stops
     within about sqrt(machine epsilon) of the least, where the cost no
@@ -330,7 +330,9 @@ def least_of_smooth(cost, low: float, high: float) -> float | None:
     root of the cost's slope (a central difference of relative step
     SLOPE_STEP), from a secant through two points POLISH on either side,
     or by Brent's root finding if the search stopped farther off: a point
-    the same to its last bits wherever it is computed."""
+    that moves by about 1e-10 of itself, far below the written six digits,
+    wherever it is computed. Where neither brackets a root (a flat or
+    kinked cost), the search's own stop (to 1e-6)."""
 
     def slope(x: float) -> float:
         step = SLOPE_STEP * x

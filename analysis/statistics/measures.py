@@ -72,8 +72,13 @@ def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0)
     """
     # at or below the kink as written (ground.digits): Walton's least often
     # puts an angle exactly on its kink, where the last bits would decide
-    written = np.array([rounded(float(p)) for p in np.ravel(psi)]).reshape(np.shape(psi))
-    return written <= rounded(float(kink(mu, beta0, e, K)))
+    return as_written(psi) <= rounded(float(kink(mu, beta0, e, K)))
+
+
+def as_written(values) -> np.ndarray:
+    """``values`` as the tables write them (ground.digits), for comparisons
+    with a threshold: an angle at cot gamma 1 measured as 1 - 1e-15 is at 1."""
+    return np.array([rounded(float(v)) for v in np.ravel(values)]).reshape(np.shape(values))
 
 
 def kink(mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> float:
@@ -106,8 +111,9 @@ def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.nda
         angle qualifies) and ``mu_eff`` (one per angle of ``table``).
     """
     psi, e, beta = table.mean("cot_gamma"), table.mean("e"), table.mean("beta")
+    band = as_written(psi)  # which angles a band holds, decided as written
     with np.errstate(invalid="ignore"):
-        order = np.argsort(psi)
+        order = np.argsort(band, kind="stable")
         grazing = order[:GRAZING_ANGLES]
         mu = mu_eff(psi, e, beta, K)
         top = np.flatnonzero(branch)
@@ -115,9 +121,9 @@ def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.nda
         clearance = table.values["side_clearance"]
         reached = np.isfinite(clearance)
         return {
-            "e_normal": _mean(e[psi >= E_NORMAL_PSI]),
+            "e_normal": _mean(e[band >= E_NORMAL_PSI]),
             "e_grazing": _mean(e[grazing]),
-            "beta_normal": _mean(beta[psi >= BETA_NORMAL_PSI]),
+            "beta_normal": _mean(beta[band >= BETA_NORMAL_PSI]),
             "mu_eff": mu,
             "mu_eff_top": float(mu[top]) if top is not None else np.nan,
             "share_beta_positive": _mean((beta > 0)[np.isfinite(beta)]),

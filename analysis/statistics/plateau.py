@@ -25,6 +25,7 @@ from scipy import stats
 
 from ground.digits import rounded
 
+from .measures import as_written
 from .seeds import SeedTable
 
 NORMAL_FROM = 1.0  # cot gamma: near normal incidence
@@ -56,7 +57,7 @@ def beta_rise(table: SeedTable) -> dict:
     """Per seed, mean beta at cot gamma >= NORMAL_FROM minus mean beta at
     the GRAZING most grazing angles, over the seeds (``over_seeds``), with
     ``on_plateau``: whether that difference is consistent with 0."""
-    cot = table.mean("cot_gamma")
+    cot = as_written(table.mean("cot_gamma"))
     beta = table.values["beta"]
     normal = cot >= NORMAL_FROM
     grazing = np.argsort(cot)[:GRAZING]

@@ -25,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from ground.digits import TABLE_DIGITS
+
 from ..table import AVERAGED
 
 # The quantities of impacts.csv that are averaged per lattice and angle.
@@ -70,9 +72,8 @@ class SeedTable:
         count = np.sum(np.isfinite(values), axis=0)
         mean = self.mean(quantity)
         squares = np.nansum((values - mean) ** 2, axis=0)
-        return np.where(
-            count > 1, np.sqrt(squares / np.maximum(count - 1, 1) / np.maximum(count, 1)), np.nan
-        )
+        spread = np.sqrt(squares / np.maximum(count - 1, 1) / np.maximum(count, 1))
+        return np.where(count > 1, as_written_error(spread, values), np.nan)
 
 
 def seed_tables(rows: list[dict], quantities=QUANTITIES) -> dict[str, SeedTable]:
@@ -162,8 +163,22 @@ def seed_bootstrap(
         finite = np.sum(np.isfinite(values), axis=0)
         with np.errstate(invalid="ignore", divide="ignore"):
             spread = np.nanstd(np.where(finite > 1, values, 0.0), axis=0, ddof=1)
-        sd[key] = np.where(finite > 1, spread, np.nan)
+        sd[key] = as_written_error(np.where(finite > 1, spread, np.nan), values)
     return sd
+
+
+def as_written_error(sd: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    """An error below the last written digit of its number (ground.digits:
+    TABLE_DIGITS of the draws' mean) is 0: it is the rounding of values
+    equal as written (a wall study's cot gamma, one angle to 1e-14), whose
+    last bits each CPU sums differently."""
+    draws = np.asarray(draws, float)
+    finite = np.isfinite(draws)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # nanmean without its warning on an all-NaN column (no number: no quantum)
+        scale = np.abs(np.sum(np.where(finite, draws, 0.0), axis=0) / np.sum(finite, axis=0))
+        quantum = 10.0 ** (np.floor(np.log10(scale)) - (TABLE_DIGITS - 1))
+    return np.where(np.isfinite(quantum) & (sd < quantum), 0.0, sd)
 
 
 def error_method(seeds: int) -> str:
@@ -212,7 +227,8 @@ def seed_jackknife(
     for key, values in draws.items():
         values = np.array(values)
         deviations = values - values.mean(axis=0)
-        sd[key] = np.sqrt((seeds - 1) / seeds * np.sum(deviations**2, axis=0))
+        spread = np.sqrt((seeds - 1) / seeds * np.sum(deviations**2, axis=0))
+        sd[key] = as_written_error(spread, values)
     return sd
 
 

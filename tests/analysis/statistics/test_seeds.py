@@ -121,3 +121,18 @@ def test_resamples_are_reproducible_and_keep_a_seed_s_lattices_together():
     assert np.array_equal(
         again["m"], seed_bootstrap(tables, lambda t: {"m": t["square_nu0.1"].mean("beta")}, 50)["m"]
     )
+
+
+def test_an_error_below_the_written_digit_of_its_number_is_zero():
+    """A wall study's cot gamma is one angle's to 1e-14: its spread over the
+    seeds is rounding, which each CPU sums differently, and is written 0; a
+    real spread (beta's) is kept as it is."""
+    from analysis.statistics.seeds import as_written_error
+
+    rng = np.random.default_rng(1)
+    cot = 9.99999 * (1.0 + rng.integers(-8, 9, (40, 3)) * 2.0**-52)
+    beta = rng.normal(-0.9, 0.05, (40, 3))
+    noise = cot.std(axis=0, ddof=1)
+    assert np.all(noise > 0) and np.all(as_written_error(noise, cot) == 0.0)
+    spread = beta.std(axis=0, ddof=1)
+    assert np.array_equal(as_written_error(spread, beta), spread)
