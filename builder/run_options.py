@@ -79,7 +79,9 @@ RUN_OPTIONS = (
            DRIFT, section="run", made_by="always"),
     Option("barrier_halvings", 2, "times the impact may run again at half the step when a "
            "triangle crosses the area barrier (--area-floor) within one step, a step too long "
-           "for the barrier's stiffness (0: stop there); the step run is recorded",
+           "for the barrier's stiffness, or, with --dt auto, when the contact finds the step "
+           "too long (a point in the wall, a segment torn: grazing angles) (0: stop there); "
+           "the step run is recorded",
            HALVINGS, section="run", study_cli=False),
 )  # fmt: skip
 RUN = by_name(RUN_OPTIONS)

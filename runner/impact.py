@@ -15,7 +15,7 @@ from ground.errors import InputError
 from ground.launch import LammpsError, lammps_version, mpi_launcher, run_lmp, run_python
 from ground.provenance import git_revision
 
-from .options import DT, RunOptions, halved_step
+from .options import AUTO, DT, RunOptions, halved_step
 
 RUN_OUTPUTS = (
     "log.lammps",
@@ -29,6 +29,13 @@ RUN_OUTPUTS = (
 # decks/area_barrier.lmp's angle style stops the run with this when a triangle
 # turned over between two steps (potentials/angle_area_barrier.cpp)
 BARRIER_CROSSED = "crossed the barrier within one step"
+# What the contact says when the step is too long for it
+# (potentials/pair_polyline_exp.cpp): a surface segment torn past the
+# contact's reach between two checks, or a disk point stepped into the wall.
+# At speeds along the wall above about c (grazing angles at 0.1 c) the
+# spacing's step no longer resolves the contact; a step the program chose
+# ("auto") is then the program's to halve, a step the user gave is not.
+STEP_TOO_LONG = ("the run went unstable", "is inside the wall")
 
 
 def check_folder(folder: Path | str) -> None:
@@ -118,6 +125,7 @@ def run_scene(
         )
     for name in RUN_OUTPUTS:
         (folder / name).unlink(missing_ok=True)
+    automatic = options.dt == AUTO
     options = halved_step(options.for_scene(scene_spec(scene)), halvings)
     options.validate()
 
@@ -135,7 +143,7 @@ def run_scene(
         except LammpsError as error:
             # the barrier's energy diverges as a triangle's area vanishes, so a
             # crossing is a step too long for it, not the body's physics
-            if not may_halve(str(error), halvings, options):
+            if not may_halve(str(error), halvings, options, automatic):
                 raise
             halvings += 1
             options = halved_step(options)
@@ -161,14 +169,16 @@ def run_scene(
     return result
 
 
-def may_halve(error: str, halvings: int, options: RunOptions) -> bool:
+def may_halve(error: str, halvings: int, options: RunOptions, automatic: bool = False) -> bool:
     """Whether a run that stopped with ``error`` after ``halvings`` halvings
-    of the step runs again at half its step (``options``: the step run)."""
-    return (
-        BARRIER_CROSSED in error
-        and halvings < options.barrier_halvings
-        and DT.contains(options.dt / 2)
+    of the step runs again at half its step (``options``: the step run):
+    after a barrier's crossing, and, where the step was the program's
+    (``automatic``: dt "auto"), after the contact's step-too-long errors
+    (STEP_TOO_LONG)."""
+    too_long = BARRIER_CROSSED in error or (
+        automatic and any(words in error for words in STEP_TOO_LONG)
     )
+    return too_long and halvings < options.barrier_halvings and DT.contains(options.dt / 2)
 
 
 def scene_spec(scene: dict) -> SceneSpec:

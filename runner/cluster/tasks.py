@@ -36,7 +36,7 @@ from ground.gate import make_folder
 from ground.launch import lammps_error
 
 from ..impact import may_halve, run_scene
-from ..options import halved_step
+from ..options import AUTO, halved_step
 from ..study import Study
 from ..study.folders import STARTED, prune
 
@@ -97,7 +97,7 @@ def impact_task(study: Study, job: dict) -> dict:
     attempts, error, halvings = earlier_attempt(job)
     if error:  # the last start ended its worker with this LAMMPS error
         options = halved_step(study.options.for_scene(study.spec(job)), halvings)
-        if not may_halve(error, halvings, options):
+        if not may_halve(error, halvings, options, automatic=study.options.dt == AUTO):
             return fail(job, error)
         # a step too long for the area barrier: this start runs at half of
         # it, and counts the starts killed from outside anew

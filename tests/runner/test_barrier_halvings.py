@@ -14,7 +14,7 @@ import pytest
 from builder.scene import SceneSpec
 from builder.study_names import LIMITS
 from ground.launch import LammpsError
-from runner.impact import BARRIER_CROSSED, run_impact
+from runner.impact import BARRIER_CROSSED, may_halve, run_impact
 from runner.options import RunOptions
 from tests.helpers import ROOT, RUNS
 
@@ -92,3 +92,47 @@ def test_a_study_runs_a_crossing_impact_again_at_half_the_step():
     # the step is the study's own, kept as done, not refused as another's
     again = barrier_study("test_barrier_long_step", "0.016", fresh=False)
     assert again == long
+
+
+# Sliding at 87 degrees on the grazing wall (held at its sides and bottom,
+# 32 R): at 1.9 c along the wall the spacing's step does not resolve the
+# contact; seed 12's surface tears a wall segment past the contact's reach
+# at dt 0.004 (step 1072) and rebounds at 0.002.
+GRAZING = SceneSpec(
+    n_disk=800,
+    gamma_deg=87.0,
+    seed=12,
+    wall_fixed="sides+bottom",
+    wall_width=32.0,
+    n_wall=6400,
+    **LIMITS["paper-slope-floor"],
+)
+TORN = (
+    "ERROR on proc 0: Pair polyline/exp: segment 134-135 is 0.81 long, more than reach 0.29, "
+    "at step 1072: the run went unstable, or reach is too small"
+)
+INSIDE = "ERROR on proc 0: Pair polyline/exp: atom 6468 is inside the wall at step 323"
+
+
+def test_the_contacts_step_errors_halve_only_a_step_the_program_chose():
+    options = RunOptions(dt=0.008)
+    for error in (TORN, INSIDE):
+        assert may_halve(error, 0, options, automatic=True)
+        assert not may_halve(error, 0, options)  # the user's dt: the user's error
+        assert not may_halve(error, 2, options, automatic=True)  # no halvings left
+    assert may_halve(BARRIER_CROSSED, 0, options)
+    slid = "ERROR: the disk slid off the end of the wall before it rebounded"
+    assert not may_halve(slid, 0, options, automatic=True)  # the wall's, not the step's
+
+
+@pytest.mark.slow
+def test_an_automatic_step_too_long_for_the_contact_runs_again_at_half(tmp_path):
+    """The user's dt 0.004 stops with the contact's error; dt auto (0.008 at
+    800 points) is halved until the impact rebounds, and run.json says so."""
+    with pytest.raises(LammpsError, match="the run went unstable"):
+        run_impact(GRAZING, tmp_path / "given", RunOptions(dt=0.004))
+    assert not (tmp_path / "given" / "result.json").exists()
+    result = run_impact(GRAZING, tmp_path / "auto", RunOptions(dt="auto"))
+    record = json.loads((tmp_path / "auto" / "run.json").read_text())
+    assert record["dt_halvings"] == 2 and record["options"]["dt"] == 0.002
+    assert result["dt"] == 0.002 and 0.5 < result["e"] < 1.2
