@@ -102,7 +102,8 @@ def add_study_arguments(study) -> None:
     grid.add_argument(
         "--extend",
         action="store_true",
-        help="let --samples and --lattices add to an existing study (never remove)",
+        help="let --samples, --lattices, and a study file's angles and retries "
+        "(barrier_halvings), add to an existing study (never remove)",
     )
     study.add_argument(
         "--name",

@@ -16,7 +16,7 @@ from ground.launch import STYLE_LIBRARIES
 from ground.paths import ROOT as LAMMPS_ROOT
 
 from ..options import RUN_OPTIONS, on_ranks
-from ..study import EXTENDABLE, STUDY_SCENE, Study
+from ..study import EXTENDABLE, STUDY_SCENE, Study, extends
 from ..values import ANGLES
 
 # runner study's run options (a study file's [run] takes every one).
@@ -48,7 +48,7 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
     """The study a `runner study` command names: ``preset``, its file's, or, if its
     folder holds a study, that study's study.json; the options given change
     it. A study that exists is never changed silently: an option that differs
-    from its record is refused, but for --extend's more samples or lattices,
+    from its record is refused, but for --extend's more samples, lattices or angles,
     and so is a study file (``file``) that differs from what it said when the
     study was first run."""
     from dataclasses import replace
@@ -66,6 +66,9 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
         file_changes["samples"] = max(file_changes["samples"], base.samples)
     if "lattices" in file_changes:
         file_changes["lattices"] = tuple(dict.fromkeys((*base.lattices, *said["lattices"])))
+    for key in ("angles", "cot_gamma", "options"):  # the file's, which only add (extends)
+        if key in file_changes:
+            file_changes[key] = getattr(preset, key)
     changes = {
         key: getattr(args, key)
         for key in ("samples", "angles", "vn", *(o.name for o in STUDY_SCENE))
@@ -104,15 +107,15 @@ def study_from_args(args, preset: Study, file: Path | None = None) -> Study:
     if existing:
         before, after = base.grid(), study.grid()
         differ = [key for key in after if after[key] != before.get(key)]
-        grows = {
-            "samples": study.samples >= base.samples,
-            "lattices": set(base.lattices) <= set(study.lattices),
-        }
-        refused = [k for k in differ if not (args.extend and k in EXTENDABLE and grows[k])]
+        refused = [
+            k
+            for k in differ
+            if not (args.extend and k in EXTENDABLE and extends(k, before.get(k), after[k]))
+        ]
         if refused:
             said = "; ".join(differences(refused, before, after, "there", "asked"))
             hint = (
-                " (--extend adds samples or lattices)"
+                " (--extend adds samples, lattices or angles)"
                 if set(refused) <= set(EXTENDABLE) and not args.extend
                 else ""
             )
@@ -182,15 +185,20 @@ def file_changed(
     before = {o.name: o.recorded_before for o in RUN_OPTIONS}
     source = {**source, "options": {**before, **source.get("options", {})}}
     differ = [key for key in said if said[key] != source.get(key)]
-    grows = {
-        "samples": said["samples"] >= max(source.get("samples", 0), ran or 0),
-        "lattices": set(source.get("lattices", ())) <= set(said["lattices"]),
-    }
-    refused = [k for k in differ if not (extend and k in EXTENDABLE and grows[k])]
+    ran_samples = max(source.get("samples", 0), ran or 0)
+    refused = [
+        k
+        for k in differ
+        if not (
+            extend
+            and k in EXTENDABLE
+            and extends(k, ran_samples if k == "samples" else source.get(k), said[k])
+        )
+    ]
     if refused:
         told = "; ".join(differences(refused, source, said, "then", "now"))
         hint = (
-            "; --extend takes more samples or lattices"
+            "; --extend takes more samples, lattices or angles"
             if set(refused) <= set(EXTENDABLE) and not extend
             else ""
         )

@@ -52,7 +52,29 @@ MAX_IMPACTS = 200_000
 IMPACTS_PER_WORKER_MINUTE = 505.0
 # What may differ between a study's study.json and a command that resumes it
 # with --extend: more samples, more lattices.
-EXTENDABLE = ("samples", "lattices")
+EXTENDABLE = ("samples", "lattices", "angles", "cot_gamma", "options")
+
+
+def extends(key: str, before, after) -> bool:
+    """Whether ``after`` only adds to ``before`` in a study's grid field
+    ``key`` (an EXTENDABLE one): more samples, lattices or explicit angles
+    (every angle before among them), or run options that differ only in
+    what does not change a done impact (study.folders.RUN_ANY_WAY)."""
+    from .folders import RUN_ANY_WAY
+
+    if key == "samples":
+        return after >= before
+    if key == "lattices":
+        return set(before) <= set(after)
+    if key == "cot_gamma":
+        return bool(before) and set(before) <= set(after)
+    if key == "angles":
+        return after >= before
+    if key == "options":
+        return all(before.get(k) == v for k, v in after.items() if k not in RUN_ANY_WAY)
+    return False
+
+
 _cap = [MAX_IMPACTS]
 
 

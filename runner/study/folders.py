@@ -103,7 +103,10 @@ def prune(folder: Path) -> None:
 
 # What may differ between a finished impact's run and its study's without
 # changing its result: where and how its ranks ran.
-RUN_ANY_WAY = ("nprocs", "route", "dump_every", "every")
+# barrier_halvings is a budget of retries, not how a run ran: a done
+# impact's step is compared at the halvings it took (run.json), and one that
+# took more than the study allows is refused in check_made_as_asked.
+RUN_ANY_WAY = ("nprocs", "route", "dump_every", "every", "barrier_halvings")
 
 
 def first_difference(recorded: dict, asked: dict, prefix: str = "") -> tuple[str, object, object]:
@@ -166,6 +169,12 @@ def check_made_as_asked(job: dict, scene: dict, options: RunOptions) -> None:
             flush=True,
         )
         return
+    if halvings > options.barrier_halvings:
+        raise InputError(
+            f"impact {folder} ran at its step halved {halvings} times; the study allows "
+            f"barrier_halvings {options.barrier_halvings}: remove the study's folder (or that "
+            "impact's) to run it anew, or give another --name"
+        )
     asked = halved_step(options, halvings).as_dict()
     options = {k: v for k, v in asked.items() if k not in RUN_ANY_WAY}
     key, had, want = first_difference(

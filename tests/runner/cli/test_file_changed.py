@@ -43,3 +43,23 @@ def test_extend_never_takes_a_level_below_what_the_file_said_or_what_ran():
     assert file_changed(listed, {**said, "samples": 60}, True, "p", "p.toml", 48) == {"samples": 60}
     with pytest.raises(InputError, match="samples 80 then, 60 now"):
         file_changed(said, {**said, "samples": 60}, True, "p", "p.toml", 48)
+
+
+def test_extend_adds_angles_and_retries_never_removes_them():
+    """The sliding branch's file, grown by an angle and a larger retry budget:
+    --extend takes both (the done impacts stay valid); an angle dropped, or
+    an option that changes how an impact runs, is refused either way."""
+    said = json.loads(json.dumps(Study("probe", angles=2, cot_gamma=(1.0, 0.05)).grid()))
+    grown = json.loads(json.dumps(Study("probe", angles=3, cot_gamma=(1.0, 0.05, 0.035)).grid()))
+    grown["options"]["barrier_halvings"] = 4
+    changed = file_changed(said, grown, True, "p", "p.toml")
+    assert set(changed) == {"angles", "cot_gamma", "options"}
+    with pytest.raises(InputError, match="--extend takes more samples, lattices or angles"):
+        file_changed(said, grown, False, "p", "p.toml")
+    dropped = {**grown, "cot_gamma": [1.0, 0.035]}
+    with pytest.raises(InputError, match=r"cot_gamma \[1.0, 0.05\] then, \[1.0, 0.035\] now"):
+        file_changed(said, dropped, True, "p", "p.toml")
+    other_step = json.loads(json.dumps(grown))
+    other_step["options"]["dt"] = 0.004
+    with pytest.raises(InputError, match="options.dt"):
+        file_changed(said, other_step, True, "p", "p.toml")

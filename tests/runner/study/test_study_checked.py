@@ -97,3 +97,16 @@ def test_a_corrupted_finished_impact_runs_again(finished, copy, name):
     assert "1 already done or failed, 1 to run" in done.stdout
     assert json.loads((folder / name).read_text())  # made again
     assert (folder / "result.json.corrupt").is_file()
+
+
+def test_an_impact_that_took_more_halvings_than_the_study_allows_is_refused(finished, copy):
+    """barrier_halvings is a budget (runner.study.folders.RUN_ANY_WAY): a done
+    impact is checked at the step it took, and refused if it took more
+    halvings than the study allows."""
+    folder = next((RUNS / copy).rglob("g80.5000"))
+    run = json.loads((folder / "run.json").read_text())
+    (RUNS / copy / "study.json").unlink()
+    run["dt_halvings"] = 3
+    run["options"]["dt"] /= 8
+    (folder / "run.json").write_text(json.dumps(run))
+    one_line(study(finished, copy, "--workers", "1"), "ran at its step halved 3 times; the study")
