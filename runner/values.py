@@ -21,7 +21,7 @@ from ground.checks import Range
 # The grid's own numbers (runner.study.Study.validate reads them too).
 SAMPLES = Range(1, 10_000, integer=True)
 ANGLES = Range(2, 1_000, integer=True)
-COT_GAMMA = Range(0.05, 100.0)  # 0.6 to 87 degrees
+COT_GAMMA = Range(0.03, 100.0)  # 0.6 to 88.3 degrees (studies/sliding_branch.toml)
 
 # [grid]: runner.study.Study's grid. vn may be an axis (a study each); the
 # lists (many) are the study's own axes.
