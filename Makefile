@@ -186,8 +186,16 @@ demo: setup
 paper: setup
 	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
+# On TEST_WORKERS processes (pytest-xdist; tests/conftest.py groups them):
+# first what writes into the tree (the pages made again, caches), then what
+# watches the whole tree (marked tree), then what puts files into studies/
+# (marked writes_tree), alone.
+TEST_WORKERS ?= 2
+XDIST = -n $(TEST_WORKERS) --dist loadgroup
 test: setup setup-pypi $(STAMPS)/debian-test
-	$(PYTHON) -m pytest -q -rs --durations=25 tests
+	$(PYTHON) -m pytest -q -rs --durations=25 $(XDIST) -m 'not tree and not writes_tree' tests
+	$(PYTHON) -m pytest -q -rs --durations=5 $(XDIST) -m tree tests
+	$(PYTHON) -m pytest -q -rs --durations=5 -m writes_tree tests
 
 # The developers' loop: what is not marked slow (pytest.ini's markers).
 test-quick: setup setup-pypi

@@ -25,6 +25,9 @@ from ground.checks import InPath, OutFolder, Range
 from ground.paths import ROOT
 from tests.helpers import RUNS
 
+# the whole tree watched: after the others (tests/conftest.py)
+pytestmark = pytest.mark.tree
+
 BENCH = ROOT / "bench"
 
 # The values of the table: the non-finite ones and a word are bad for

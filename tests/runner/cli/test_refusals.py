@@ -27,6 +27,9 @@ import pytest
 from tests.helpers import ROOT, RUNS
 from tests.runner.cli.test_bad_input import WorkStarted, listing, no_work
 
+# the whole tree watched: after the others (tests/conftest.py)
+pytestmark = pytest.mark.tree
+
 DOCS = ROOT / "docs"
 SMALL = '[grid]\nlattices = ["random"]\nangles = 2\nsamples = 1\n[scene]\nn_disk = 200\n'
 

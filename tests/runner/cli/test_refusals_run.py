@@ -10,6 +10,9 @@ import pytest
 from tests.runner.cli import test_refusals as refusals
 from tests.runner.cli.test_refusals import SMALL, Case, command, ran, study
 
+# the whole tree watched: after the others (tests/conftest.py)
+pytestmark = pytest.mark.tree
+
 # the module's fixtures, for these cases too
 places, clean_tree = refusals.places, refusals.clean_tree
 
