@@ -241,18 +241,26 @@ def walton_mu_bounds(
     is on its plateau at every angle the profile is flat above the lower
     bound, whatever the rise; where the data show a faint sliding branch, a
     larger rise may leave mu unbounded."""
-    # the fit's own mu besides the grid: its minimum may be narrower than the grid's steps
-    grid = np.union1d(MU_GRID, [fit_walton(data, K, e, weighted)[0]])
-    costs = np.array([walton_profile(data, K, m, e, weighted) for m in grid])
+    return profile_bounds(
+        lambda m: walton_profile(data, K, m, e, weighted), fit_walton(data, K, e, weighted)[0], rise
+    )
+
+
+def profile_bounds(profile, fitted_mu: float, rise: float) -> tuple[float, float]:
+    """(lowest, highest) mu whose ``profile`` (the least cost at that mu) is
+    within ``rise`` of its least: on MU_GRID and the fit's own mu (its
+    minimum may be narrower than the grid's steps), refined at the edges by
+    root finding; highest infinite where the profile stays within ``rise``
+    up to MU_HIGH."""
+    grid = np.union1d(MU_GRID, [fitted_mu])
+    costs = np.array([profile(m) for m in grid])
     level = costs.min() + rise
     inside = np.flatnonzero(costs <= level)
 
     def edge(outside: int, within: int) -> float:
         """Where the profile crosses ``level`` between two grid points."""
         low, high = sorted((grid[outside], grid[within]))
-        return float(
-            brentq(lambda m: walton_profile(data, K, m, e, weighted) - level, low, high, xtol=1e-13)
-        )
+        return float(brentq(lambda m: profile(m) - level, low, high, xtol=1e-13))
 
     first, last = inside[0], inside[-1]
     low = 0.0 if first == 0 else edge(first - 1, first)
