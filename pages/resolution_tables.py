@@ -8,8 +8,11 @@ import csv
 import math
 from pathlib import Path
 
+import numpy as np
+
 from analysis.kinds.resolution import FITTED, QUANTITIES, order
 from analysis.statistics.extrapolation import FIT_FROM, FORMS
+from ground.digits import rounded
 from ground.gate import atomic
 
 from .text import markdown_table, pm
@@ -54,8 +57,9 @@ def limit_text(found: dict) -> str:
                 "not identified: the paper's-way fit marks no sliding branch at N = "
                 f"{levels} ({shape})"
             )
+        fit = "fit with the seeds' covariance" if found.get("of") == "mu_gls" else "weighted fit"
         return (
-            f"not identified by Walton's weighted fit: no upper bound at N = {levels} (mu >= "
+            f"not identified by Walton's {fit}: no upper bound at N = {levels} (mu >= "
             f"{min(lows):.3f} to {max(lows):.3f}; {shape})"
         )
     return "too few levels from 800 points"
@@ -223,7 +227,8 @@ def friction_table(summary: dict) -> str:
     from grazing to normal incidence and mu_eff at the most grazing angle,
     each over the seeds (analysis.statistics.plateau)."""
     header = ["reading", "lattice", "N", "seeds", "beta: normal - grazing"]
-    header.append("mu_eff at the most grazing angle")
+    header += ["mu_eff at the most grazing angle", "Walton, seeds' covariance: mu", "beta0"]
+    header.append("chi2/dof")
     body = []
     for (reading, lattice, n), s in sorted(
         summary.items(), key=lambda kv: (order(kv[0][:2]), kv[0][2])
@@ -234,5 +239,20 @@ def friction_table(summary: dict) -> str:
         body.append(
             [reading, lattice, f"{n:,}", str(s["plateau"]["seeds"]), rise_text(s["plateau"])]
             + [f"{pm(value, sd)} ({s['grazing_deg']:g} degrees)"]
+            + gls_cells(s.get("gls"))
         )
     return markdown_table(header, body)
+
+
+def gls_cells(gls: dict | None) -> list[str]:
+    """Walton fitted with the seeds' covariance (analysis.statistics.walton_gls):
+    mu +- its seed error [its profile's two-error range], beta0, chi2/dof."""
+    if gls is None:
+        return ["-", "-", "-"]
+    low, high = gls["mu_bounds"]
+    upper = "no upper bound" if np.isinf(high) else f"{rounded(high):.3f}"
+    return [
+        f"{pm(gls['mu'], gls['mu_sd'])} [{rounded(low):.3f} to {upper}]",
+        pm(gls["beta0"], gls["beta0_sd"]),
+        f"{rounded(gls['chi2'] / gls['dof']):.1f}",
+    ]
