@@ -186,16 +186,17 @@ demo: setup
 paper: setup
 	$(PYTHON) -m runner study paper --docs $(STUDY_ARGS)
 
-# On TEST_WORKERS processes (pytest-xdist; tests/conftest.py groups them):
-# first what writes into the tree (the pages made again, caches), then what
-# watches the whole tree (marked tree), then what puts files into studies/
-# (marked writes_tree), alone.
+# On TEST_WORKERS processes (pytest-xdist): first each test module whole on
+# one process (--dist loadscope: its module fixtures, LAMMPS runs, made once),
+# the pages made again among them; then the refusals that watch the whole
+# tree (marked tree), one by one; last, alone, what writes into the tree or
+# reads the pages' bytes (marked alone). pytest.ini says why for each mark.
 TEST_WORKERS ?= 2
-XDIST = -n $(TEST_WORKERS) --dist loadgroup
 test: setup setup-pypi $(STAMPS)/debian-test
-	$(PYTHON) -m pytest -q -rs --durations=25 $(XDIST) -m 'not tree and not writes_tree' tests
-	$(PYTHON) -m pytest -q -rs --durations=5 $(XDIST) -m tree tests
-	$(PYTHON) -m pytest -q -rs --durations=5 -m writes_tree tests
+	$(PYTHON) -m pytest -q -rs --durations=25 -n $(TEST_WORKERS) --dist loadscope \
+	    -m 'not tree and not alone' tests
+	$(PYTHON) -m pytest -q -rs --durations=5 -n $(TEST_WORKERS) --dist load -m tree tests
+	$(PYTHON) -m pytest -q -rs --durations=5 -m alone tests
 
 # The developers' loop: what is not marked slow (pytest.ini's markers).
 test-quick: setup setup-pypi

@@ -17,6 +17,10 @@ from runner.study.studies import load_study
 from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables
 
+# reads the committed pages' bytes or times, which the pages made again
+# rewrite: last, alone (Makefile)
+pytestmark = pytest.mark.alone
+
 
 def test_power_law_recovers_a_known_exponent():
     rng = np.random.default_rng(1)

@@ -25,7 +25,7 @@ from ground.checks import InPath, OutFolder, Range
 from ground.paths import ROOT
 from tests.helpers import RUNS
 
-# the whole tree watched: after the others (tests/conftest.py)
+# the whole tree watched: after the others, which write into it (Makefile)
 pytestmark = pytest.mark.tree
 
 BENCH = ROOT / "bench"

@@ -27,7 +27,7 @@ import pytest
 from tests.helpers import ROOT, RUNS
 from tests.runner.cli.test_bad_input import WorkStarted, listing, no_work
 
-# the whole tree watched: after the others (tests/conftest.py)
+# the whole tree watched: after the others, which write into it (Makefile)
 pytestmark = pytest.mark.tree
 
 DOCS = ROOT / "docs"

@@ -10,7 +10,7 @@ import pytest
 from tests.runner.cli import test_refusals as refusals
 from tests.runner.cli.test_refusals import SMALL, Case, command, ran, study
 
-# the whole tree watched: after the others (tests/conftest.py)
+# the whole tree watched: after the others, which write into it (Makefile)
 pytestmark = pytest.mark.tree
 
 # the module's fixtures, for these cases too

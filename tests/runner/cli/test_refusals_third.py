@@ -22,7 +22,7 @@ import pytest
 
 from tests.helpers import ROOT, RUNS
 
-# the whole tree watched: after the others (tests/conftest.py)
+# the whole tree watched: after the others, which write into it (Makefile)
 pytestmark = pytest.mark.tree
 
 SMALL = '[grid]\nlattices = ["random"]\nangles = 2\nsamples = 1\n[scene]\nn_disk = 200\n'

@@ -21,6 +21,10 @@ from runner.study.readings import setup_of
 from runner.study.studies import study_file
 from tests.helpers import ROOT, RUNS
 
+# reads the committed pages' bytes or times, which the pages made again
+# rewrite: last, alone (Makefile)
+pytestmark = pytest.mark.alone
+
 DOCS = ROOT / "docs" / "studies"  # each study's folder: page, tables, figures
 
 

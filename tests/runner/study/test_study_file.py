@@ -16,8 +16,8 @@ from runner.study.file import STUDIES, read_study_file, study_file_text, study_p
 from runner.study.studies import built_in_pages, load_study
 from tests.helpers import ROOT, RUNS
 
-# files put into studies/ for a moment, or studies/ listed: last, alone (tests/conftest.py)
-pytestmark = pytest.mark.writes_tree
+# files put into studies/ for a moment, or studies/ listed: last, alone (Makefile)
+pytestmark = pytest.mark.alone
 
 
 @pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
