@@ -16,9 +16,6 @@ from runner.study.file import STUDIES, read_study_file, study_file_text, study_p
 from runner.study.studies import built_in_pages, load_study
 from tests.helpers import ROOT, RUNS
 
-# files put into studies/ for a moment, or studies/ listed: last, alone (Makefile)
-pytestmark = pytest.mark.alone
-
 
 @pytest.mark.parametrize("path", sorted(STUDIES.glob("*.toml")), ids=lambda p: p.stem)
 def test_every_study_file_reads_back_from_its_own_text(path, tmp_path):
@@ -270,16 +267,19 @@ def test_a_study_with_an_axis_runs_each_value_and_puts_the_rows_together(tmp_pat
 
 @pytest.mark.slow
 def test_a_page_has_the_sections_its_file_names(tmp_path):
-    """sections = [...]: the page has those, in that order, and no other."""
+    """sections = [...]: the page has those, in that order, and no other
+    (a synthetic study of 8 seeds: the sections, not the numbers, are asked)."""
+    from analysis.theory.tangential import walton_beta
     from pages.report import report_from_tables
+    from tests.synthetic import impact_rows, write_tables
 
     path = tmp_path / "short.toml"
     path.write_text('page = "short"\nsections = ["fits", "claims"]\n')
     sections = read_study_file(path).sections
     page = tmp_path / "short.md"
-    report_from_tables(
-        ROOT / "docs" / "studies" / "results", page, out=tmp_path / "t", sections=sections
-    )
+    rows = impact_rows("random", lambda psi: walton_beta(psi, 0.8, 0.18, 0.56), seeds=8)
+    tables = write_tables(tmp_path / "tables", rows, ["random"])
+    report_from_tables(tables, page, out=tmp_path / "t", sections=sections)
     headings = [x for x in page.read_text().splitlines() if x.startswith("## ")]
     assert headings[:2] == ["## Fits", "## The paper's claims"]
     assert "## What the errors are" not in headings and "## Model-free measures" not in headings
