@@ -14,7 +14,8 @@ import pytest
 from tests.helpers import ROOT
 
 # kills, signals and a scheduler's give-ups timed against its own processes:
-# last, alone (Makefile), as test_study.py, whose give-up scenario once lost an impact beside another module
+# last, alone (Makefile), as test_study.py, whose give-up scenario once
+# lost an impact beside another module
 pytestmark = pytest.mark.alone
 
 
