@@ -62,16 +62,22 @@ def run_crash_scenario(name: str, *extra: str, env: dict | None = None):
     )
 
 
-def genuine_failures(study: Path) -> dict[str, str]:
+def genuine_failures(study: Path, proc: subprocess.CompletedProcess | None = None) -> dict:
     """{folder: error} of the scenario's failed impacts, after checking that
     exactly the 80.5-degree ones failed, each with the ERROR of its own log,
-    and that the 45-degree ones finished."""
+    and that the 45-degree ones finished. ``proc``, the study's command, is
+    shown where they did not, with what every impact's folder holds."""
     from ground.launch import lammps_error
 
     failed = {str(p.parent): json.loads(p.read_text())["error"] for p in study.rglob("failed.json")}
     done = {str(p.parent) for p in study.rglob("result.json")}
-    assert sorted(Path(f).name for f in failed) == ["g80.5191"] * 4, failed
-    assert sorted(Path(f).name for f in done) == ["g45.0000"] * 4, done
+    folders = {
+        str(p.relative_to(study)): sorted(f.name for f in p.iterdir())
+        for p in study.glob("*/s*/g*")
+    }
+    said = f"{failed}\n{folders}\n" + (f"{proc.stdout}\n{proc.stderr}" if proc else "")
+    assert sorted(Path(f).name for f in failed) == ["g80.5191"] * 4, said
+    assert sorted(Path(f).name for f in done) == ["g45.0000"] * 4, said
     for folder, error in failed.items():
         assert error == lammps_error(Path(folder) / "log.lammps", "no ERROR in its log")
     return failed

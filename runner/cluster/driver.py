@@ -15,14 +15,10 @@ from ..study import Study
 from ..study.folders import state
 from ..study.lock import made_by_lock, study_lock
 from ..study.sample_bodies import BODIES_FOLDER
-from .tasks import WORKER_PHASES, group_task
+from .tasks import MAX_ATTEMPTS, WORKER_PHASES, group_task
 from .workers import ClusterSpec, ClusterUnavailable, dask_client, replace_ended_jobs
 
 PROGRESS_EVERY = 10.0  # seconds between progress lines
-# Resubmissions of a group whose task the scheduler gave up (a joined cluster
-# with few allowed failures) per impact in it: each settles at least one
-# impact or counts one more start of it (runner.cluster.tasks.MAX_ATTEMPTS).
-RESUBMITS_PER_IMPACT = 4
 
 
 class WorkerTime:
@@ -168,7 +164,16 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
     print(f"  on {workers} Dask workers{ranks}; dashboard: {client.dashboard_link}", flush=True)
     progress = Progress(len(jobs), len(jobs) - len(todo))
     spent = WorkerTime()
-    resubmits = {index: RESUBMITS_PER_IMPACT * len(group) for index, group in enumerate(groups)}
+    # A scheduler gives a task up when workers died running it (a joined
+    # cluster's allowed-failures); the driver submits it again and the
+    # impacts' folders decide. A worker dies with every task it holds, so a
+    # task can be given up behind other impacts' crashes however often: the
+    # bound is on the deaths, and each impact can end at most MAX_ATTEMPTS
+    # workers at each of its steps (runner.cluster.tasks). More deaths than
+    # that are a cluster whose workers die before they start any impact.
+    deaths: set[str] = set()
+    most_deaths = len(todo) * MAX_ATTEMPTS * (1 + study.options.barrier_halvings)
+    again = 0
     prefix = f"impacts-{study.name}"  # the dashboard groups tasks by it
     batch_jobs = len(getattr(getattr(client, "cluster", None), "worker_spec", None) or {})
     pending = {
@@ -191,14 +196,15 @@ def drive(study: Study, jobs: list[dict], todo: list[dict], client, workers: int
             except TimeoutError:
                 pending[future] = index  # still wanted: not released
                 continue
-            except KilledWorker:  # a joined cluster gave the task up: its impacts decide
+            except KilledWorker as error:  # a joined cluster gave the task up: its impacts decide
                 future.release()
-                resubmits[index] -= 1
-                if resubmits[index] < 0:
+                deaths.add(error.last_worker.address)
+                if len(deaths) > most_deaths:
                     raise
-                key = f"{prefix}-{index}-again{resubmits[index]}"
-                again = client.submit(group_task, study, groups[index], pure=False, key=key)
-                pending[again] = index
+                again += 1
+                key = f"{prefix}-{index}-again{again}"
+                resubmitted = client.submit(group_task, study, groups[index], pure=False, key=key)
+                pending[resubmitted] = index
                 continue
             except BaseException:
                 future.release()

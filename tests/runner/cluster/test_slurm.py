@@ -88,7 +88,7 @@ def test_a_study_on_slurm_gives_the_local_results_bit_for_bit(slurm):
 def test_a_lammps_error_on_slurm_costs_exactly_its_impact(slurm):
     proc = run_crash_scenario("test_slurm_crashes", *ON_SLURM, env=slurm)
     assert proc.returncode == 1, proc.stderr
-    genuine_failures(RUNS / "test_slurm_crashes")
+    genuine_failures(RUNS / "test_slurm_crashes", proc)
 
 
 def test_a_slurm_job_that_ends_is_replaced_and_fails_no_impact(slurm):

@@ -27,10 +27,6 @@ from tests.helpers import (
 )
 from tests.runner.tiny_study import TINY, study, table
 
-# kills, signals and a scheduler's give-ups timed against its own processes:
-# last, alone (Makefile); beside another module one impact went unsettled
-pytestmark = pytest.mark.alone
-
 
 def test_a_whole_study_records_where_its_workers_time_went(uninterrupted):
     clock = json.loads((RUNS / "test_study_whole" / "study.json").read_text())["wall_clock"]
@@ -71,7 +67,7 @@ def test_a_lammps_error_costs_exactly_its_impact():
     name = "test_study_crashes"
     proc = run_crash_scenario(name)
     assert proc.returncode == 1, proc.stderr
-    failed = genuine_failures(RUNS / name)
+    failed = genuine_failures(RUNS / name, proc)
     assert proc.stdout.strip().splitlines()[-1].startswith("4 impacts, 4 failed")
     # --retry-failed runs exactly the failed impacts again, each in LAMMPS anew
     logs = {f: (Path(f) / "log.lammps").stat().st_mtime_ns for f in failed}
@@ -156,10 +152,11 @@ def test_a_joined_cluster_that_gives_tasks_up_loses_no_impact(tmp_path):
     scheduler_file = tmp_path / "scheduler.json"
     env = {**os.environ, "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}
     dask = [str(Path(sys.executable).parent / "dask")]
+    said = (tmp_path / "daemons.log").open("w")  # shown if the scenario goes wrong
     daemons = [
         subprocess.Popen(
             [*dask, "scheduler", "--scheduler-file", str(scheduler_file), "--port", "0",
-             "--no-dashboard"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+             "--no-dashboard"], env=env, stdout=said, stderr=subprocess.STDOUT,
         )
     ]  # fmt: skip
     try:
@@ -169,16 +166,22 @@ def test_a_joined_cluster_that_gives_tasks_up_loses_no_impact(tmp_path):
         daemons.append(
             subprocess.Popen(
                 [*dask, "worker", "--scheduler-file", str(scheduler_file), "--nworkers", "2",
-                 "--nthreads", "1", "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
+                 "--nthreads", "1", "--no-dashboard"], env=env, stdout=said,
+                stderr=subprocess.STDOUT,
             )
         )  # fmt: skip
         name = "test_study_joined"
         proc = run_crash_scenario(name, "--scheduler", str(scheduler_file))
         assert proc.returncode == 1, proc.stderr
-        genuine_failures(RUNS / name)
+        try:
+            genuine_failures(RUNS / name, proc)
+        except AssertionError as error:
+            said.flush()
+            raise AssertionError(f"{error}\n{(tmp_path / 'daemons.log').read_text()}") from None
+        assert proc.stdout.strip().splitlines()[-1].startswith("4 impacts, 4 failed")
     finally:
         stop_by_pid(daemons)
+        said.close()
 
 
 @pytest.mark.parametrize(
