@@ -189,14 +189,15 @@ paper: setup
 # On TEST_WORKERS processes (pytest-xdist): first each test module whole on
 # one process (--dist loadscope: its module fixtures, LAMMPS runs, made once),
 # the pages made again among them; then the refusals that watch the whole
-# tree (marked tree), one by one; last, alone, what writes into the tree or
-# reads the pages' bytes (marked alone). pytest.ini says why for each mark.
+# tree (marked tree), one by one; last the modules that write into the tree
+# or read the pages' bytes (marked last), each whole on one process: none of
+# them writes what another reads. pytest.ini says why for each mark.
 TEST_WORKERS ?= 2
 test: setup setup-pypi $(STAMPS)/debian-test
 	$(PYTHON) -m pytest -q -rs --durations=25 -n $(TEST_WORKERS) --dist loadscope \
-	    -m 'not tree and not alone' tests
+	    -m 'not tree and not last' tests
 	$(PYTHON) -m pytest -q -rs --durations=5 -n $(TEST_WORKERS) --dist load -m tree tests
-	$(PYTHON) -m pytest -q -rs --durations=5 -m alone tests
+	$(PYTHON) -m pytest -q -rs --durations=5 -n $(TEST_WORKERS) --dist loadscope -m last tests
 
 # The developers' loop: what is not marked slow (pytest.ini's markers).
 test-quick: setup setup-pypi

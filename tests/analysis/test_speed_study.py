@@ -18,8 +18,8 @@ from tests.helpers import ROOT
 from tests.synthetic import impact_rows, write_tables
 
 # reads the committed pages' bytes or times, which the pages made again
-# rewrite: last, alone (Makefile)
-pytestmark = pytest.mark.alone
+# rewrite: after them (Makefile)
+pytestmark = pytest.mark.last
 
 
 def test_power_law_recovers_a_known_exponent():

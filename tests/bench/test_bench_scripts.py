@@ -19,8 +19,8 @@ from ground.paths import ROOT
 from tests.helpers import RUNS
 
 # reads the committed pages' bytes or times, which the pages made again
-# rewrite: last, alone (Makefile)
-pytestmark = pytest.mark.alone
+# rewrite: after them (Makefile)
+pytestmark = pytest.mark.last
 
 SCRIPTS = sorted(
     p for p in (ROOT / "bench").glob("*.py") if p.name not in ("common.py", "__init__.py")

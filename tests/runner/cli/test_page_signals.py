@@ -13,11 +13,6 @@ import pytest
 
 from tests.helpers import ROOT
 
-# kills, signals and a scheduler's give-ups timed against its own processes:
-# last, alone (Makefile), as test_study.py, whose give-up scenario once
-# lost an impact beside another module
-pytestmark = pytest.mark.alone
-
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_a_signal_during_a_page_ends_it_in_one_line_with_nothing_half_written(tmp_path, signum):

@@ -19,8 +19,8 @@ from ground.errors import InputError
 from ground.gate import gate, remove
 from tests.helpers import ROOT, RUNS
 
-# files put into studies/ for a moment, or studies/ listed: last, alone (Makefile)
-pytestmark = pytest.mark.alone
+# files put into studies/ for a moment, or studies/ listed: last (Makefile)
+pytestmark = pytest.mark.last
 
 DOCS = ROOT / "docs"
 SMALL = '[grid]\nlattices = ["random"]\nangles = 2\nsamples = 1\n[scene]\nn_disk = 200\n'

@@ -22,8 +22,8 @@ from runner.study.studies import study_file
 from tests.helpers import ROOT, RUNS
 
 # reads the committed pages' bytes or times, which the pages made again
-# rewrite: last, alone (Makefile)
-pytestmark = pytest.mark.alone
+# rewrite: after them (Makefile)
+pytestmark = pytest.mark.last
 
 DOCS = ROOT / "docs" / "studies"  # each study's folder: page, tables, figures
 

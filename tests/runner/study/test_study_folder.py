@@ -18,8 +18,8 @@ from tests.helpers import ROOT, RUNS
 from tests.runner.tiny_study import study, table
 
 # reads the committed pages' bytes or times, which the pages made again
-# rewrite: last, alone (Makefile)
-pytestmark = pytest.mark.alone
+# rewrite: after them (Makefile)
+pytestmark = pytest.mark.last
 
 
 def test_an_unreadable_result_is_named_set_aside_and_run_again(uninterrupted):

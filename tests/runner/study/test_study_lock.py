@@ -12,14 +12,7 @@ import subprocess
 import sys
 import time
 
-import pytest
-
 from tests.helpers import ROOT, RUNS
-
-# kills, signals and a scheduler's give-ups timed against its own processes:
-# last, alone (Makefile), as test_study.py, whose give-up scenario once
-# lost an impact beside another module
-pytestmark = pytest.mark.alone
 
 SMALL = '[grid]\nlattices = ["random"]\nangles = 2\nsamples = 1\n[scene]\nn_disk = 200\n'
 
