@@ -182,22 +182,29 @@ def draw(means: list[dict], fits: dict, folder: Path) -> list[Path]:
     fig, ax = _axes("mu_eff = (1 + beta) / ((1 + e) K cot gamma)")
     for lattice, entry in fits["lattices"].items():
         mu = entry["measures"]["mu_eff"]
-        on = [j for j, sliding in enumerate(mu["sliding"]) if sliding]
-        if not on:
-            continue
         color, marker = STYLE.get(lattice, ("k", "o"))
+        sd = [s if s is not None else np.nan for s in mu["sd"]]
         ax.errorbar(
-            [mu["cot_gamma"][j] for j in on],
-            [mu["value"][j] for j in on],
-            yerr=[mu["sd"][j] if mu["sd"][j] is not None else np.nan for j in on],
+            mu["cot_gamma"],
+            mu["value"],
+            yerr=sd,
             fmt=marker + "-",
             color=color,
+            mfc="none",
             ms=4,
             lw=0.8,
             capsize=2,
             label=LABELS.get(lattice, lattice),
         )
+        on = [j for j, sliding in enumerate(mu["sliding"]) if sliding]
+        ax.plot(
+            [mu["cot_gamma"][j] for j in on],
+            [mu["value"][j] for j in on],
+            marker,
+            color=color,
+            ms=4,
+        )  # filled: on the sliding branch
     if ax.has_data():
         ax.axhline(0.18, color="0.5", lw=0.8, ls=":", label="the paper's mu, 0.18")
-    paths.append(_finish(fig, ax, folder / "mu_eff.png", "no sliding branch in this study"))
+    paths.append(_finish(fig, ax, folder / "mu_eff.png", "no lattice to fit in this study"))
     return paths

@@ -21,7 +21,7 @@ from analysis.kinds.references import (
 from ground.gate import write_figure
 
 from .render import render
-from .text import markdown_table
+from .text import markdown_table, pm
 
 TITLE = "Two disks against the symmetric references"
 FIGURE = "references_speed.png"  # e and the contact time against the pair's speed
@@ -115,8 +115,8 @@ def body(rows: list[dict], setup: Setup, figures: Path, figure: str) -> str:
         if fit["failing"]:
             return (
                 f"{fit['mu']:.3f} +- {fit['sd']:.3f} +- {fit['systematic']:.3f} sys "
-                f"(fails: chi2/dof {fit['chi2']:.1f}; mu_eff top "
-                f"{fit['mu_eff_top']['value']:.3f})"
+                f"(fails: chi2/dof {fit['chi2']:.1f}; mu on the sliding branch "
+                f"{pm(fit['mu_branch']['value'])})"
             )
         return f"{fit['mu']:.3f} +- {fit['sd']:.3f} (chi2/dof {fit['chi2']:.1f})"
 

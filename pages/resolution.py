@@ -135,7 +135,7 @@ def draw_trends(summary: dict, found: dict, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    shown = ("e_normal", "mu", "beta0", "mu_eff_top")
+    shown = ("e_normal", "mu", "beta0", "mu_branch")
     fig, axes = plt.subplots(1, len(shown), figsize=(4.2 * len(shown), 3.6))
     for ax, q in zip(axes, shown, strict=True):
         for limit, lattice in sorted({(k[0], k[1]) for k in summary}, key=order):

@@ -52,10 +52,11 @@ def limit_text(found: dict) -> str:
             if rises
             else "no rise of beta from grazing to normal incidence resolved"
         )
-        if found.get("of") == "mu_eff_top":
+        if found.get("of") == "mu_branch":
             return (
-                "not identified: the paper's-way fit marks no sliding branch at N = "
-                f"{levels} ({shape})"
+                f"not identified: no sliding branch in the rows at N = {levels} (the two "
+                f"most grazing angles' mu_eff differ; mu >= {min(lows):.3f} to "
+                f"{max(lows):.3f} there, at the most grazing angle)"
             )
         fit = "fit with the seeds' covariance" if found.get("of") == "mu_gls" else "weighted fit"
         return (

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from analysis import poisson, table
 from analysis.impact.failures import drifted, outcome
-from analysis.statistics import claims, fit_verdicts, measures
+from analysis.statistics import claims, fit_verdicts, measures, sliding
 
 from .command import made_by
 from .render import macro, render
@@ -35,8 +35,9 @@ def own_section(name: str, study: dict, rows: list[dict], means: list[dict], fit
         near=claims.NEAR,
         described=fit_verdicts.described(fits) if fits["lattices"] else {},
         failing=fit_verdicts.failing(fits),
-        sliding=fit_verdicts.sliding_table(fits) if fits["lattices"] else [],
+        sliding=fit_verdicts.mu_eff_table(fits) if fits["lattices"] else [],
         p=poisson.poisson_pair(fits, study, rows, means) if name == "nu" else None,
+        branch_p=sliding.BRANCH_P,
         e_normal_psi=measures.E_NORMAL_PSI,
         beta_normal_psi=measures.BETA_NORMAL_PSI,
         grazing_angles=measures.GRAZING_ANGLES,

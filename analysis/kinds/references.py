@@ -178,7 +178,7 @@ def walton(group: list[dict], resamples: int) -> dict:
         "systematic": systematic,
         "error": error,
         "failing": failing,
-        "mu_eff_top": entry["measures"]["mu_eff_top"],
+        "mu_branch": entry["measures"]["mu_branch"],
     }
 
 

@@ -143,7 +143,7 @@ QUANTITIES = (
     ("e_grazing", "e at grazing incidence (3 smallest cot gamma)"),
     ("mu", "Walton's mu (measured way)"),
     ("beta0", "Walton's beta0 (measured way)"),
-    ("mu_eff_top", "mu_eff at the sliding branch's top"),
+    ("mu_branch", "mu on the sliding branch found in the rows (its angles' mean mu_eff)"),
     ("mu_eff_grazing", "mu_eff at the most grazing angle (mu, or a lower bound of it)"),
     ("mu_gls", "Walton's mu, fitted with the seeds' covariance"),
     ("beta0_gls", "Walton's beta0, fitted with the seeds' covariance"),
@@ -285,28 +285,38 @@ def mu_bounds(done: list[dict], lattice: str) -> dict[str, tuple[float, float]]:
     }
 
 
-# Walton's mu, each way, and mu_eff at the top of the sliding branch that
-# the paper's-way fit's kink marks: where a level's data bound that mu from
-# below only (no angle on the sliding branch), no limit is sought.
+# Walton's mu, each way: where a level's data bound it from below only (no
+# angle on the sliding branch), no limit is sought; nor for mu on the
+# branch where a level's rows hold no branch (analysis.statistics.sliding).
 # The paper's way is the paper's own procedure: its number and seed error
 # stand as the paper gave them, judged against the rows' own lower bound
 # (analysis.statistics.resolution_claims.contradicted), not withheld.
-MU_WAYS = {"mu": "measured", "mu_eff_top": "paper", "mu_gls": "gls"}
+MU_WAYS = {"mu": "measured", "mu_gls": "gls"}
 
 
 def unidentified(summary: dict, limit: str, lattice: str, quantity: str) -> list[tuple]:
     """[(N, lowest mu)] of the fitted levels whose data leave ``quantity``
-    (MU_WAYS) without an upper bound. One such level withholds the limit,
-    however few the levels ("not identified" before "too few")."""
+    (MU_WAYS) without an upper bound, or hold no sliding branch for
+    mu_branch (its lowest: mu_eff at the most grazing angle). One such level
+    withholds the limit, however few the levels ("not identified" before
+    "too few")."""
+    mine = [
+        (n, entry)
+        for (li, la, n), entry in sorted(summary.items())
+        if (li, la) == (limit, lattice) and n >= extrapolation.FIT_FROM and not entry["excluded"]
+    ]
+    if quantity == "mu_branch":
+        return [
+            (n, entry["values"]["mu_eff_grazing"][0])
+            for n, entry in mine
+            if "mu_branch" in entry["values"] and not np.isfinite(entry["values"]["mu_branch"][0])
+        ]
     if quantity not in MU_WAYS:
         return []
     return [
         (n, entry["mu_bounds"][MU_WAYS[quantity]][0])
-        for (li, la, n), entry in sorted(summary.items())
-        if (li, la) == (limit, lattice)
-        and n >= extrapolation.FIT_FROM
-        and not entry["excluded"]
-        and MU_WAYS[quantity] in entry.get("mu_bounds", {})
+        for n, entry in mine
+        if MU_WAYS[quantity] in entry.get("mu_bounds", {})
         and np.isinf(entry["mu_bounds"][MU_WAYS[quantity]][1])
     ]
 

@@ -32,8 +32,9 @@ from ground.digits import half_range
 from ..table import NEAR_SIDE, NEAR_SIDE_SHARE, held
 from ..theory.tangential import nu_for_eta, walton_beta
 from .fits import Means, compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
-from .measures import kink, measures, sliding_branch
+from .measures import measures
 from .seeds import QUANTITIES, RNG_SEED, SeedTable, seed_bootstrap, seed_errors, seed_tables
+from .sliding import BRANCH_P, sliding_branch
 
 # The paper's fits (docs/model.md sections 6 and 8).
 PAPER = {"e": 0.8, "K": 3.0, "eta": 1.015, "alpha": 3.02}
@@ -148,7 +149,7 @@ class Study:
                     inputs = way(theory, name, info["K"], info["nu"])
                     start = self.starts.get((lattice, theory, name))
                     out[(lattice, theory, name)] = fit(theory, data, inputs, start)
-            for key, value in measures(table, info["K"], self.branches[lattice]).items():
+            for key, value in measures(table, info["K"], self.branches[lattice][0]).items():
                 out[(lattice, "measure", key)] = value
         if self.pair:
             low, high = self.pair
@@ -166,14 +167,9 @@ class Study:
         return out
 
     def prepare(self) -> None:
-        """The sliding branches, from the paper's-way Walton fit to all the data."""
+        """The sliding branches, read from all the data (``sliding``)."""
         for lattice, info in self.lattices.items():
-            table = self.tables[lattice]
-            inputs = way("walton", "paper", info["K"], info["nu"])
-            mu, beta0 = fit("walton", means(table), inputs)
-            self.branches[lattice] = sliding_branch(
-                table.mean("cot_gamma"), mu, beta0, inputs["e"], inputs["K"]
-            )
+            self.branches[lattice] = sliding_branch(self.tables[lattice], info["K"])
 
 
 def variants(
@@ -334,16 +330,15 @@ def study_estimates(
                 {name: best[(lattice, theory, name)] for name in ("paper", "measured")},
             )
             entry[theory]["systematic"] = systematic(entry[theory]["variants"], PARAMETERS[theory])
-        branch = study.branches[lattice]
-        paper = entry["walton"]["paper"]
+        branch, p_branch = study.branches[lattice]
         entry["sliding_branch"] = {
-            "rule": "cot gamma at or below the kink of the paper's-way Walton fit, "
-            "(1 + beta0) / (mu (1 + 0.8) 3)",
-            "psi_c": kink(paper["mu"], paper["beta0"], PAPER["e"], PAPER["K"]),
+            "rule": "the longest run of the most grazing angles whose mu_eff one constant "
+            f"describes (p >= {BRANCH_P}, Hotelling's T^2 on each seed's differences)",
+            "p": p_branch,
             "gamma_deg": [float(g) for g in table.gamma_deg[branch]],
         }
         entry["measures"] = {}
-        for key in ("e_normal", "e_grazing", "beta_normal", "mu_eff_top"):
+        for key in ("e_normal", "e_grazing", "beta_normal", "mu_branch"):
             entry["measures"][key] = _pair(best, sd, (lattice, "measure", key))
         entry["measures"]["share_beta_positive"] = _pair(
             best, sd, (lattice, "measure", "share_beta_positive")

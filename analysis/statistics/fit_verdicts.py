@@ -54,20 +54,15 @@ def failing(fits: dict) -> list[dict]:
     return out
 
 
-def sliding_table(fits: dict) -> list[dict]:
-    """mu_eff on the sliding branch, a row per angle any lattice has there:
-    the angle, its cot gamma (the last lattice's that has the angle), and
-    per lattice mu_eff with its seed error, or None off its branch."""
+def mu_eff_table(fits: dict) -> list[dict]:
+    """mu_eff at every angle, a row per angle any lattice has, the most
+    grazing first: the angle, its cot gamma (the last lattice's that has
+    the angle), and per lattice (mu_eff, its seed error, on the lattice's
+    sliding branch) or None where the lattice lacks the angle."""
     lattices = fits["lattices"]
     gammas = sorted(
-        {
-            g
-            for entry in lattices.values()
-            for g, on in zip(
-                entry["measures"]["mu_eff"]["gamma_deg"], entry["measures"]["mu_eff"]["sliding"]
-            )
-            if on
-        }
+        {g for entry in lattices.values() for g in entry["measures"]["mu_eff"]["gamma_deg"]},
+        reverse=True,
     )
     rows = []
     for gamma in gammas:
@@ -78,7 +73,6 @@ def sliding_table(fits: dict) -> list[dict]:
             if gamma in mu["gamma_deg"]:
                 j = mu["gamma_deg"].index(gamma)
                 psi = mu["cot_gamma"][j]
-                if mu["sliding"][j]:
-                    cells[lattice] = (mu["value"][j], mu["sd"][j])
+                cells[lattice] = (mu["value"][j], mu["sd"][j], mu["sliding"][j])
         rows.append({"gamma": gamma, "psi": psi, "cells": cells})
     return rows

@@ -10,7 +10,8 @@ bootstrap like every other number:
 - ``beta_normal``: beta near normal incidence, the mean over cot gamma >= 4;
 - ``mu_eff``: the implied Coulomb friction (1 + beta) / ((1 + e) K psi) at
   every angle, which Walton's sliding branch holds constant at mu;
-- ``mu_eff_top``: mu_eff at the top of the sliding branch (``sliding_branch``);
+- ``mu_branch``: mu on the sliding branch found in the rows, the mean
+  mu_eff of its angles (``sliding.sliding_branch``; NaN without a branch);
 - ``share_beta_positive``: the share of the angles whose mean beta is above 0;
 - ``share_near_side``: the share of all the lattice's contacts whose disk
   centre came within ``table.NEAR_SIDE`` of a fixed side of the wall.
@@ -48,46 +49,10 @@ def mu_eff(psi, e, beta, K: float) -> np.ndarray:
     return (1.0 + np.asarray(beta)) / ((1.0 + np.asarray(e)) * K * np.asarray(psi))
 
 
-def sliding_branch(psi, mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> np.ndarray:
-    """The angles of the sliding branch: cot gamma at or below the kink of a Walton fit.
-
-    Walton's beta leaves the sliding line -1 + mu (1 + e) K psi for the
-    plateau beta0 at psi_c = (1 + beta0) / (mu (1 + e) K); with the paper's
-    fit (e 0.8, K 3) that is where the paper read its mu from. The data
-    have no sharp kink (mu_eff is not constant), so the branch is this fit's
-    reading of where sliding ends, fixed from all the data before any
-    resample.
-
-    Parameters
-    ----------
-    psi : array_like
-        cot gamma of each angle.
-    mu, beta0, e, K : float
-        The Walton fit that places the kink.
-
-    Returns
-    -------
-    numpy.ndarray
-        True at the angles with psi <= psi_c (to the written digits).
-    """
-    # at or below the kink as written (ground.digits): Walton's least often
-    # puts an angle exactly on its kink, where the last bits would decide
-    return as_written(psi) <= rounded(float(kink(mu, beta0, e, K)))
-
-
 def as_written(values) -> np.ndarray:
     """``values`` as the tables write them (ground.digits), for comparisons
     with a threshold: an angle at cot gamma 1 measured as 1 - 1e-15 is at 1."""
     return np.array([rounded(float(v)) for v in np.ravel(values)]).reshape(np.shape(values))
-
-
-def kink(mu: float, beta0: float, e: float = 0.8, K: float = 3.0) -> float:
-    """psi_c = (1 + beta0) / (mu (1 + e) K), where Walton's beta leaves its
-    sliding line; with mu 0 the line is -1 everywhere: every angle slides
-    (infinite) where beta0 is above -1, none (0) where it is not."""
-    if mu > 0:
-        return (1.0 + beta0) / (mu * (1.0 + e) * K)
-    return np.inf if beta0 > -1.0 else 0.0
 
 
 def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.ndarray]:
@@ -100,13 +65,13 @@ def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.nda
     K : float
         1 + M R^2 / I of the disk.
     branch : numpy.ndarray
-        The sliding branch's angles (``sliding_branch``), one bool per angle of
-        ``table``.
+        The sliding branch's angles (``sliding.sliding_branch``), one bool per
+        angle of ``table``.
 
     Returns
     -------
     dict
-        ``e_normal``, ``e_grazing``, ``beta_normal``, ``mu_eff_top``,
+        ``e_normal``, ``e_grazing``, ``beta_normal``, ``mu_branch``,
         ``share_beta_positive``, ``share_near_side`` (floats, NaN where no
         angle qualifies) and ``mu_eff`` (one per angle of ``table``).
     """
@@ -116,8 +81,6 @@ def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.nda
         order = np.argsort(band, kind="stable")
         grazing = order[:GRAZING_ANGLES]
         mu = mu_eff(psi, e, beta, K)
-        top = np.flatnonzero(branch)
-        top = top[np.argmax(psi[top])] if top.size else None
         clearance = table.values["side_clearance"]
         reached = np.isfinite(clearance)
         return {
@@ -125,7 +88,7 @@ def measures(table: SeedTable, K: float, branch: np.ndarray) -> dict[str, np.nda
             "e_grazing": _mean(e[grazing]),
             "beta_normal": _mean(beta[band >= BETA_NORMAL_PSI]),
             "mu_eff": mu,
-            "mu_eff_top": float(mu[top]) if top is not None else np.nan,
+            "mu_branch": _mean(mu[branch]) if branch.sum() >= 2 else np.nan,
             "share_beta_positive": _mean((beta > 0)[np.isfinite(beta)]),
             "share_near_side": float(np.sum(clearance[reached] < NEAR_SIDE) / reached.sum())
             if reached.any()

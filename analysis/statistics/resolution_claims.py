@@ -19,9 +19,9 @@ every level and in the limit N -> infinity:
 - Walton's mu the measured way or with the seeds' covariance
   (analysis.statistics.walton_gls), where a level's profile bounds
   it from below only (``mu_bounds``), misses if that lower bound lies
-  beyond the claim's range and is undecided otherwise, and mu_eff at the
-  sliding branch's top, whose branch the paper's-way fit marks, is
-  undecided where that fit's mu is so bounded; in the limit both are
+  beyond the claim's range and is undecided otherwise, and mu on the
+  sliding branch found in the rows (analysis.statistics.sliding) is
+  undecided at a level whose rows hold no branch; in the limit both are
   undecided ("not identified"). The paper's way is the paper's own
   procedure and is judged by its number and seed error, as the paper gave
   it; a fitted mu below the rows' own lower bound (mu_eff at the most
@@ -50,9 +50,9 @@ CLAIMS = (
     ("e near 0.8 (mean e at cot gamma >= 1)", "random", "e_normal", 0.8, NEAR["e"], None),
     ("Walton's mu near 0.18 (the paper's way)", "random", "mu_paper", 0.18, NEAR["mu"], "paper"),
     (
-        "mu near 0.18 (mu_eff at the sliding branch's top)",
+        "mu near 0.18 (mu on the sliding branch found in the rows)",
         "random",
-        "mu_eff_top",
+        "mu_branch",
         0.18,
         NEAR["mu"],
         None,
@@ -188,7 +188,7 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
             "too few": "too few levels",
             "no form": "no form describes the levels",
             "not identified": "not identified: no sliding branch"
-            if found and found.get("of") == "mu_eff_top"
+            if found and found.get("of") == "mu_branch"
             else "not identified: no upper bound on mu",
         }.get(status)
         if status == "not converged":
@@ -202,21 +202,24 @@ def limit_verdict(found: dict | None, claim: tuple, systematic: float = 0.0) -> 
     }
 
 
-# The fit whose mu a claim rests on: Walton's, each way; mu_eff at the top
-# of the sliding branch that the paper's-way fit's kink marks.
-SLIDING_FROM = {"mu": "measured", "mu_eff_top": "paper", "mu_gls": "gls"}
+# The fit whose mu a claim rests on: Walton's, each way.
+SLIDING_FROM = {"mu": "measured", "mu_gls": "gls"}
 # Claims whose number is a lower bound of what the paper claims.
 LOWER_BOUNDS = ("mu_eff_grazing",)
 
 
 def open_above(entry: dict, claim: tuple) -> dict | None:
     """A mu claim's cell at a level whose data bound that fit's mu from below
-    only (module docstring), or None where the fit bounds it."""
+    only, or hold no sliding branch (module docstring), or None where the fit
+    or the branch gives mu."""
+    if claim[2] == "mu_branch":
+        value = entry["values"].get("mu_branch", (math.nan,))[0]
+        if math.isfinite(value):
+            return None
+        return {"value": None, "error": None, "verdict": "undecided", "note": "no sliding branch"}
     bounds = entry.get("mu_bounds", {}).get(SLIDING_FROM.get(claim[2]))
     if not bounds or not math.isinf(bounds[1]):
         return None
-    if claim[2] == "mu_eff_top":  # no angle on the branch: nothing to read
-        return {"value": None, "error": None, "verdict": "undecided", "note": "no sliding branch"}
     _, _, _, paper, near, _ = claim
     verdict = "misses" if bounds[0] > paper + near else "undecided"
     note = f"mu >= {bounds[0]:.3f}, no upper bound"

@@ -29,7 +29,12 @@ def test_a_mu_without_upper_bound_at_any_level_has_no_limit():
     summary[("r", "random", 3200)]["mu_bounds"]["measured"] = (0.11, math.inf)
     assert unidentified(summary, "r", "random", "mu") == [(3200, 0.11)]
     assert unidentified(summary, "r", "random", "mu_paper") == []
+    # the paper's way unbounded says nothing of the branch; a level whose
+    # rows hold no branch withholds its limit, at mu_eff's lower bound there
     summary[("r", "random", 1600)]["mu_bounds"]["paper"] = (0.02, math.inf)
-    assert unidentified(summary, "r", "random", "mu_eff_top") == [(1600, 0.02)]
+    assert unidentified(summary, "r", "random", "mu_branch") == []
+    summary[("r", "random", 1600)]["values"]["mu_branch"] = (math.nan, math.nan)
+    summary[("r", "random", 1600)]["values"]["mu_eff_grazing"] = (0.15, 0.01)
+    assert unidentified(summary, "r", "random", "mu_branch") == [(1600, 0.15)]
     found = limits(summary, ("mu",))[("r", "random", "mu")]
     assert found["status"] == "not identified" and found["open_above"] == [(3200, 0.11)]

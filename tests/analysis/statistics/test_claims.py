@@ -137,3 +137,25 @@ def test_one_wall_is_read_from_the_tables_or_study_json():
 )
 def test_the_verdict_rule(value, error, paper, near, expected):
     assert verdict(value, error, paper, near) == expected
+
+
+def test_rows_without_a_sliding_branch_bound_mu_from_below_only():
+    """No branch in the rows: the model-free mu is mu_eff at the most
+    grazing angle, a lower bound, which misses only if it lies above the
+    claim's range (0.18 +- 0.05) by two errors, never for lying below it."""
+    from analysis.statistics.claims import _friction, lower_bound_verdict
+
+    def fits(value: float) -> dict:
+        mu_eff = {"gamma_deg": [45.0, 80.5], "cot_gamma": [1.0, 0.167],
+                  "value": [0.05, value], "sd": [0.004, 0.01]}  # fmt: skip
+        measures = {"mu_branch": {"value": float("nan"), "sd": float("nan")}, "mu_eff": mu_eff}
+        return {"lattices": {"random": {"measures": measures}}}
+
+    bound, said = _friction(fits(0.2), "random")
+    assert bound["value"] == 0.2 and bound["lower_bound"]
+    assert said.startswith("mu_eff at 80.5 degrees, a lower bound")
+    assert lower_bound_verdict(0.2, 0.01, 0.18, 0.05) == "undecided"
+    assert lower_bound_verdict(0.24, 0.01, 0.18, 0.05) == "undecided"  # 0.22: within reach
+    assert lower_bound_verdict(0.26, 0.01, 0.18, 0.05) == "misses"
+    assert lower_bound_verdict(0.05, 0.01, 0.18, 0.05) == "undecided"  # below: x may be 0.18
+    assert verdict(0.05, 0.01, 0.18, 0.05) == "misses"

@@ -150,21 +150,21 @@ def test_a_lower_bound_misses_only_above_the_claim_s_range():
     assert row["cells"][1600]["verdict"] == "misses"
 
 
-def test_mu_eff_at_a_branch_the_fit_leaves_free_is_not_judged():
-    """mu_eff reads the angles below the paper's-way fit's kink: where that
-    fit's mu has no upper bound, its value (far below 0.18) is not judged,
-    and in the limit it is undecided."""
-    claim = next(c for c in CLAIMS if c[2] == "mu_eff_top")
+def test_mu_on_a_level_without_a_sliding_branch_is_not_judged():
+    """mu on the branch read from the rows: a level whose rows hold no
+    branch (NaN) is undecided, whatever Walton's fits say; a level with one
+    is judged by its number, even where the paper's-way fit leaves mu free;
+    in the limit it is undecided."""
+    claim = next(c for c in CLAIMS if c[2] == "mu_branch")
     summary = {("r", "random", n): entry(16) for n in (800, 1600)}
-    for level in summary.values():
-        level["values"]["mu_eff_top"] = (0.01, 0.01)
-    summary[("r", "random", 800)]["mu_bounds"] = {"paper": (0.02, math.inf)}
-    summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.05, 0.07)}
+    summary[("r", "random", 800)]["values"]["mu_branch"] = (math.nan, math.nan)
+    summary[("r", "random", 1600)]["values"]["mu_branch"] = (0.01, 0.01)
+    summary[("r", "random", 1600)]["mu_bounds"] = {"paper": (0.02, math.inf)}
     row = next(c for c in claims_table(summary, {}, "r") if c["claim"] == claim[0])
     assert (row["cells"][800]["verdict"], row["cells"][800]["note"]) == (
         "undecided",
         "no sliding branch",
     )
     assert row["cells"][1600]["verdict"] == "misses"
-    found = {"status": "not identified", "open_above": [(800, 0.02)], "of": "mu_eff_top"}
+    found = {"status": "not identified", "open_above": [(800, 0.02)], "of": "mu_branch"}
     assert limit_verdict(found, claim)["verdict"] == "undecided (not identified: no sliding branch)"
