@@ -12,6 +12,7 @@ COLUMNS = (
     ("beta", "{:+.4f}"),
     ("omega", "{:+.4f}"),
     ("contact_time", "{:.2f}"),
+    ("dt", "{:g}"),
     ("steps", "{}"),
     ("wall_seconds", "{:.1f}"),
 )

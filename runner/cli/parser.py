@@ -28,7 +28,13 @@ from ..study import runs_folder
 from ..study.file import StudyFile
 from ..study.outputs import remake_page, shown
 from ..wall_tilt import add_tilt_arguments, wall_tilt
-from .run_args import add_run_arguments, options_from_args, unstable_hint, warn_if_inaccurate
+from .run_args import (
+    add_run_arguments,
+    note_if_halved,
+    options_from_args,
+    unstable_hint,
+    warn_if_inaccurate,
+)
 from .study import add_study_arguments, run_study_command, study_argument
 from .study_args import EnvironmentFault
 
@@ -131,11 +137,13 @@ def main(argv: list[str] | None = None) -> int:
             if warning := speed_warning(spec.vn, spec.gamma_deg):
                 print(f"python -m runner: warning: {warning}", file=sys.stderr)
             results = [run_impact(spec, out, options)]
+            note_if_halved(out)
         elif args.command == "run":
             gate(args.scene, "scene")  # it writes its results into the folder
             options = options_from_args(args)
             check_launch(options)
             results = [run_scene(args.scene, options)]
+            note_if_halved(args.scene)
         elif args.command == "page":
             with stop_on_signals():  # every file whole or not at all (ground.gate.atomic)
                 return remake_page(args)

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+from pathlib import Path
 
 from ground.errors import InputError
 from ground.launch import LammpsError
@@ -59,6 +61,20 @@ def unstable_hint(error: Exception, args) -> str:
         if args.dt > default
         else f" (dt = {args.dt:g} R/c)"
     )
+
+
+def note_if_halved(folder: Path) -> None:
+    """One line on stderr where the run halved the step it was given
+    (runner.impact.may_halve): the table's dt is the step it ran at."""
+    run = json.loads((Path(folder) / "run.json").read_text())
+    if halvings := run.get("dt_halvings"):
+        print(
+            f"python -m runner: note: ran at dt = {run['options']['dt']:g} R/c, the step given "
+            f"halved {halvings} time{'s' if halvings > 1 else ''}: at the longer one a triangle "
+            "crossed the area barrier, or the contact was not resolved, within one step "
+            "(--barrier-halvings)",
+            file=sys.stderr,
+        )
 
 
 def warn_if_inaccurate(result: dict) -> None:

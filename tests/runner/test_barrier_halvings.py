@@ -136,3 +136,21 @@ def test_an_automatic_step_too_long_for_the_contact_runs_again_at_half(tmp_path)
     record = json.loads((tmp_path / "auto" / "run.json").read_text())
     assert record["dt_halvings"] == 2 and record["options"]["dt"] == 0.002
     assert result["dt"] == 0.002 and 0.5 < result["e"] < 1.2
+
+
+@pytest.mark.slow
+def test_the_command_says_the_step_it_halved(tmp_path):
+    """`runner impact --dt` given a step too long for the barrier: the table's
+    dt is the step the run was made at, and one line on stderr says it was
+    halved (issue 56: it ran at half the step and said nothing)."""
+    command = [sys.executable, "-m", "runner", "impact", "--out", str(tmp_path / "run")]
+    command += ["--lattice", "random", "--seed", "1", "--gamma", "80.5", "--n-disk", "800"]
+    for name, value in LIMITS["paper-slope-floor"].items():  # CROSSING's reading
+        command += [f"--{name.replace('_', '-')}", str(value)]
+    command += ["--dt", str(LONG_STEP)]
+    proc = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    header, row = proc.stdout.strip().splitlines()[-2:]
+    assert dict(zip(header.split(), row.split()))["dt"] == f"{LONG_STEP / 2:g}"
+    (note,) = [line for line in proc.stderr.splitlines() if "note:" in line]
+    assert f"ran at dt = {LONG_STEP / 2:g} R/c, the step given halved 1 time:" in note
