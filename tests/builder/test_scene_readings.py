@@ -72,6 +72,7 @@ OTHER_WALL_ON_PURPOSE = {
     "sliding_branch": "the wall that holds the slide past 80.5 degrees without changing with "
     "its width (docs/studies/grazing_wall/grazing_wall.md)",
     "sliding_branch_1600": "the same wall as sliding_branch, its next level",
+    "sliding_branch_3200": "the same wall as sliding_branch, its third level",
 }
 
 
