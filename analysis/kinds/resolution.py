@@ -173,6 +173,10 @@ def extract(fits: dict, lattice: str) -> dict[str, tuple[float, float]]:
         for key, value in entry["measures"].items()
         if key != "mu_eff" and value["value"] is not None
     }
+    # a level whose rows hold no sliding branch keeps it, as NaN: its claim
+    # is undecided there, and the limit withheld (``unidentified``)
+    if entry["measures"]["mu_branch"]["value"] is None:
+        out["mu_branch"] = (float("nan"), float("nan"))
     for way, suffix in (("measured", ""), ("paper", "_paper")):
         walton = entry["walton"][way]
         out[f"mu{suffix}"] = (walton["mu"], walton["mu_sd"])

@@ -38,3 +38,19 @@ def test_a_mu_without_upper_bound_at_any_level_has_no_limit():
     assert unidentified(summary, "r", "random", "mu_branch") == [(1600, 0.15)]
     found = limits(summary, ("mu",))[("r", "random", "mu")]
     assert found["status"] == "not identified" and found["open_above"] == [(3200, 0.11)]
+
+
+def test_a_level_without_a_sliding_branch_keeps_it_as_nan():
+    """fits.json writes a missing mu on the branch as null: the level keeps
+    it as NaN, so that its claim is undecided and its limit withheld."""
+    from analysis.kinds.resolution import extract
+
+    walton = {"mu": 0.1, "mu_sd": 0.01, "beta0": -0.8, "beta0_sd": 0.01}
+    measures = {"mu_branch": {"value": None, "sd": None}, "e_normal": {"value": 0.9, "sd": 0.01}}
+    fits = {
+        "lattices": {
+            "random": {"measures": measures, "walton": {"measured": walton, "paper": walton}}
+        }
+    }
+    values = extract(fits, "random")
+    assert math.isnan(values["mu_branch"][0]) and values["e_normal"] == (0.9, 0.01)

@@ -1,0 +1,96 @@
+"""mu on the sliding branch from one resolution to the next, seed by seed.
+
+Studies that run the same seeds and surfaces at several resolutions (the
+sliding branch's levels, studies/sliding_branch*.toml) give each level's
+branch and mu on it (``sliding``, ``measures``); the step between two
+levels is the difference of their mu, each on its own branch, with the
+seed bootstrap drawing the same seeds at both (a seed's surface is the same
+at every level, so their errors are correlated and the step's is smaller
+than either's).
+
+    python -m analysis.statistics.branch_steps docs/studies/sliding_branch_1600 \\
+        docs/studies/sliding_branch_3200
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from .estimates import lattice_constants
+from .measures import measures
+from .seeds import SeedTable, resample_indices, seed_tables
+from .sliding import sliding_branch
+
+RESAMPLES = 2000
+
+
+def level(folder: Path, lattice: str = "random") -> tuple[SeedTable, float, np.ndarray]:
+    """A level's table, K and sliding branch, from its committed impacts.csv."""
+    with (folder / "impacts.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    table = seed_tables(rows)[lattice]
+    K = lattice_constants(rows, lattice)[2]
+    return table, K, sliding_branch(table, K)[0]
+
+
+def steps(folders: list[Path], resamples: int = RESAMPLES) -> list[dict]:
+    """Each level's mu on its branch and each step's difference, with seed
+    bootstrap errors that draw the same seeds at every level.
+
+    Raises
+    ------
+    ValueError
+        If the levels do not share their seeds.
+    """
+    levels = [level(f) for f in folders]
+    seeds = levels[0][0].seeds
+    if any(not np.array_equal(t.seeds, seeds) for t, _, _ in levels):
+        raise ValueError("the levels do not run the same seeds")
+
+    def mus(index: np.ndarray | None) -> np.ndarray:
+        return np.array(
+            [
+                measures(t if index is None else t.take(index), K, b)["mu_branch"]
+                for t, K, b in levels
+            ]
+        )
+
+    best = mus(None)
+    draws = np.array([mus(index) for index in resample_indices(len(seeds), resamples)])
+    out = []
+    for i, folder in enumerate(folders):
+        row = {"level": folder.name, "mu": best[i], "sd": _sd(draws[:, i])}
+        if i and np.isfinite(best[i]) and np.isfinite(best[i - 1]):
+            row.update(step=best[i] - best[i - 1], step_sd=_sd(draws[:, i] - draws[:, i - 1]))
+        out.append(row)
+    return out
+
+
+def _sd(values: np.ndarray) -> float:
+    """The spread of the resamples that hold a branch (NaN if none does)."""
+    finite = values[np.isfinite(values)]
+    return float(finite.std(ddof=1)) if finite.size > 1 else float("nan")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Print mu on the sliding branch at each level and the steps between them."""
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument(
+        "folders", nargs="+", type=Path, help="docs/studies/<level>/, coarsest first"
+    )
+    args = parser.parse_args(argv)
+    for row in steps(args.folders):
+        if not np.isfinite(row["mu"]):
+            print(f"{row['level']}: no sliding branch in the rows")
+            continue
+        step = f"; step {row['step']:+.4f} +- {row['step_sd']:.4f}" if "step" in row else ""
+        print(f"{row['level']}: mu on the branch {row['mu']:.4f} +- {row['sd']:.4f}{step}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
