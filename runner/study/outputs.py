@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import csv
 import sys
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -131,15 +132,19 @@ def remake_page(args) -> int:
     if not args.all:
         print(f"wrote {shown(remake_one_page(args.described, args.out))}")
         return 0
-    for described in all_studies().values():
-        if not described.page:
-            continue
+    with_page = [d for d in all_studies().values() if d.page]
+    for count, described in enumerate(with_page, start=1):
         tables = study_docs(described.page)
+        name = described.study.name
         if (tables / "study.json").is_file() or (tables / "rows.csv").is_file():
-            print(f"wrote {shown(remake_one_page(described, args.out))}", flush=True)
+            # a page takes seconds to minutes (its fits' resamples): say which one
+            print(f"page {count} of {len(with_page)}: {name}...", flush=True)
+            start = time.monotonic()
+            page = remake_one_page(described, args.out)
+            print(f"wrote {shown(page)} ({time.monotonic() - start:.0f} s)", flush=True)
         else:
-            name = described.study.name
-            print(f"{name}: no tables in {shown(tables)}; its page is made by its run")
+            print(f"page {count} of {len(with_page)}: {name} has no tables in {shown(tables)}; "
+                  "its page is made by its run", flush=True)  # fmt: skip
     return 0
 
 
