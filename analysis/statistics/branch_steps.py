@@ -10,6 +10,11 @@ than either's).
 
     python -m analysis.statistics.branch_steps docs/studies/sliding_branch_1600 \\
         docs/studies/sliding_branch_3200
+
+With --angles, the mean mu_eff over those angles at every level instead:
+where a level's rows hold no branch, or the branches differ, the same
+angles still give a paired step (angles chosen after seeing the rows: the
+step is of those angles, not of a branch).
 """
 
 from __future__ import annotations
@@ -28,25 +33,36 @@ from .sliding import sliding_branch
 RESAMPLES = 2000
 
 
-def level(folder: Path, lattice: str = "random") -> tuple[SeedTable, float, np.ndarray]:
-    """A level's table, K and sliding branch, from its committed impacts.csv."""
+def level(
+    folder: Path, angles: list[float] | None = None, lattice: str = "random"
+) -> tuple[SeedTable, float, np.ndarray]:
+    """A level's table, K and sliding branch (or ``angles``, in degrees,
+    fixed), from its committed impacts.csv."""
     with (folder / "impacts.csv").open() as handle:
         rows = list(csv.DictReader(handle))
     table = seed_tables(rows)[lattice]
     K = lattice_constants(rows, lattice)[2]
-    return table, K, sliding_branch(table, K)[0]
+    if angles is None:
+        return table, K, sliding_branch(table, K)[0]
+    chosen = np.isin(np.round(table.gamma_deg, 4), np.round(angles, 4))
+    if chosen.sum() != len(angles):
+        raise ValueError(f"{folder.name} does not have every angle of {angles}")
+    return table, K, chosen
 
 
-def steps(folders: list[Path], resamples: int = RESAMPLES) -> list[dict]:
-    """Each level's mu on its branch and each step's difference, with seed
+def steps(
+    folders: list[Path], resamples: int = RESAMPLES, angles: list[float] | None = None
+) -> list[dict]:
+    """Each level's mu on its branch (or the mean mu_eff over ``angles``,
+    the same at every level) and each step's difference, with seed
     bootstrap errors that draw the same seeds at every level.
 
     Raises
     ------
     ValueError
-        If the levels do not share their seeds.
+        If the levels do not share their seeds, or lack one of ``angles``.
     """
-    levels = [level(f) for f in folders]
+    levels = [level(f, angles) for f in folders]
     seeds = levels[0][0].seeds
     if any(not np.array_equal(t.seeds, seeds) for t, _, _ in levels):
         raise ValueError("the levels do not run the same seeds")
@@ -82,13 +98,25 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "folders", nargs="+", type=Path, help="docs/studies/<level>/, coarsest first"
     )
+    parser.add_argument(
+        "--angles",
+        nargs="+",
+        type=float,
+        help="the mean mu_eff over these angles (degrees) at every level, not each "
+        "level's own branch",
+    )
     args = parser.parse_args(argv)
-    for row in steps(args.folders):
+    what = "mean mu_eff over the angles" if args.angles else "mu on the branch"
+    try:
+        rows = steps(args.folders, angles=args.angles)
+    except ValueError as error:
+        parser.error(str(error))
+    for row in rows:
         if not np.isfinite(row["mu"]):
             print(f"{row['level']}: no sliding branch in the rows")
             continue
         step = f"; step {row['step']:+.4f} +- {row['step_sd']:.4f}" if "step" in row else ""
-        print(f"{row['level']}: mu on the branch {row['mu']:.4f} +- {row['sd']:.4f}{step}")
+        print(f"{row['level']}: {what} {row['mu']:.4f} +- {row['sd']:.4f}{step}")
     return 0
 
 

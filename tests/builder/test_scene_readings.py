@@ -73,6 +73,7 @@ OTHER_WALL_ON_PURPOSE = {
     "its width (docs/studies/grazing_wall/grazing_wall.md)",
     "sliding_branch_1600": "the same wall as sliding_branch, its next level",
     "sliding_branch_3200": "the same wall as sliding_branch, its third level",
+    "sliding_branch_6400": "the same wall as sliding_branch, its fourth level",
 }
 
 

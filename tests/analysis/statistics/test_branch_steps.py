@@ -4,6 +4,8 @@ whose error pairs the seeds."""
 
 from __future__ import annotations
 
+import csv
+
 import pytest
 
 from analysis.statistics.branch_steps import main, steps
@@ -42,3 +44,19 @@ def test_levels_of_other_seeds_are_refused(tmp_path, capsys):
         steps([coarse, fine], resamples=10)
     assert main([str(coarse)]) == 0
     assert capsys.readouterr().out.startswith("coarse: mu on the branch 0.29")
+
+
+def test_fixed_angles_give_the_same_step_at_every_level(tmp_path, capsys):
+    """--angles: the mean mu_eff over the same angles at both levels (here
+    the branch's two most grazing), and an angle a level lacks is one line."""
+    coarse, fine = level(tmp_path / "coarse", 0.30), level(tmp_path / "fine", 0.28)
+    gammas = sorted(
+        {float(r["gamma_deg"]) for r in csv.DictReader((coarse / "impacts.csv").open())}
+    )
+    first, second = steps([coarse, fine], resamples=200, angles=gammas[-2:])
+    assert first["mu"] == pytest.approx(0.30, abs=0.01)
+    assert second["step"] == pytest.approx(-0.02, abs=0.003)
+    with pytest.raises(SystemExit) as stop:
+        main([str(coarse), str(fine), "--angles", "12.34"])
+    assert stop.value.code == 2
+    assert "does not have every angle of [12.34]" in capsys.readouterr().err
