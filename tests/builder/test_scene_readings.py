@@ -74,6 +74,7 @@ OTHER_WALL_ON_PURPOSE = {
     "sliding_branch_1600": "the same wall as sliding_branch, its next level",
     "sliding_branch_3200": "the same wall as sliding_branch, its third level",
     "sliding_branch_6400": "the same wall as sliding_branch, its fourth level",
+    "sliding_branch_slope03": "the same wall as sliding_branch, at the surface slope 0.3",
 }
 
 
