@@ -30,7 +30,7 @@ from runner.options import DT, INTEGRATORS, NRESPA
 from runner.study import COT_GAMMA, SAMPLES, Study
 from runner.study.studies import load_study
 
-ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, the branch's top, sliding
+ANGLES = (10.0, 1.0, 0.3)  # cot gamma: near normal, a middle angle, sliding
 PASS = 2.0  # standard errors
 
 

@@ -28,7 +28,7 @@ from scipy import stats
 
 from ground.digits import rounded
 
-from .measures import as_written
+from .measures import as_written, mu_eff
 from .seeds import SeedTable
 
 BRANCH_P = 0.05  # a constant describes a run's mu_eff at p at or above this
@@ -38,7 +38,7 @@ def per_seed_mu_eff(table: SeedTable, K: float) -> np.ndarray:
     """(1 + beta) / ((1 + e) K cot gamma) of every impact, seeds x angles."""
     v = table.values
     with np.errstate(invalid="ignore", divide="ignore"):
-        return (1.0 + v["beta"]) / ((1.0 + v["e"]) * K * v["cot_gamma"])
+        return mu_eff(v["cot_gamma"], v["e"], v["beta"], K)
 
 
 def constant_p(per_seed: np.ndarray) -> float | None:
