@@ -28,7 +28,7 @@ import numpy as np
 from .estimates import lattice_constants
 from .measures import measures
 from .seeds import SeedTable, resample_indices, seed_tables
-from .sliding import sliding_branch
+from .sliding import constant_p, per_seed_mu_eff, sliding_branch
 
 RESAMPLES = 2000
 
@@ -79,7 +79,10 @@ def steps(
     draws = np.array([mus(index) for index in resample_indices(len(seeds), resamples)])
     out = []
     for i, folder in enumerate(folders):
-        row = {"level": folder.name, "mu": best[i], "sd": _sd(draws[:, i])}
+        table, K, chosen = levels[i]
+        # whether one constant describes the chosen angles, seed by seed
+        p = constant_p(per_seed_mu_eff(table, K)[:, chosen]) if chosen.sum() > 1 else None
+        row = {"level": folder.name, "mu": best[i], "sd": _sd(draws[:, i]), "p_constant": p}
         if i and np.isfinite(best[i]) and np.isfinite(best[i - 1]):
             row.update(step=best[i] - best[i - 1], step_sd=_sd(draws[:, i] - draws[:, i - 1]))
         out.append(row)
@@ -116,7 +119,9 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{row['level']}: no sliding branch in the rows")
             continue
         step = f"; step {row['step']:+.4f} +- {row['step_sd']:.4f}" if "step" in row else ""
-        print(f"{row['level']}: {what} {row['mu']:.4f} +- {row['sd']:.4f}{step}")
+        p = row["p_constant"]
+        one = f" (one constant over them: p {p:.3f})" if p is not None else ""
+        print(f"{row['level']}: {what} {row['mu']:.4f} +- {row['sd']:.4f}{one}{step}")
     return 0
 
 
