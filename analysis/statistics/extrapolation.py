@@ -91,10 +91,18 @@ def _line(h: np.ndarray, q: np.ndarray, p: float, whiten) -> tuple[np.ndarray, f
     return coef, float(residual @ residual)
 
 
-def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
+def fit_form(n, q, sd, form: str, covariance=None, sandwich: bool = False) -> dict | None:
     """One form fitted to levels (N, Q, sd), or to levels whose errors are
     correlated (``covariance``, whose diagonal is sd squared); None with too
     few levels (the power law needs four) or if the fit fails.
+
+    With ``sandwich`` and a covariance estimated from few seeds, the form is
+    fitted with each level weighted by its own sd and its errors are
+    A C A^T (A the weighted fit's linear map, C the covariance), while
+    chi^2 is the GLS fit's least r^T C^-1 r: the inverse of an estimated covariance is
+    biased high (about (n - 1) / (n - p - 2) for p levels from n seeds, the
+    inverse Wishart's mean), which would shrink a GLS fit's errors by as
+    much; its chi^2 is the stricter for it.
 
     The fixed exponents are linear least squares, in closed form; the power
     law's exponent minimises the chi^2 profiled over (Q0, c), which is
@@ -117,7 +125,7 @@ def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
         return None
     sigma = sd if covariance is None else np.asarray(covariance, float)
     try:
-        whiten = _whitener(sigma)
+        whiten = _whitener(sd if sandwich else sigma)
         pinned = False
         if form == "power":
             profile = [_line(h, q, p, whiten)[1] for p in POWER_GRID]
@@ -134,7 +142,16 @@ def fit_form(n, q, sd, form: str, covariance=None) -> dict | None:
             columns.append(c * h**exponent * np.log(h))
         jacobian = whiten(np.column_stack(columns))
         with np.errstate(all="ignore"):
-            errors = np.sqrt(np.abs(np.diag(np.linalg.inv(jacobian.T @ jacobian))))
+            inverse = np.linalg.inv(jacobian.T @ jacobian)
+            if sandwich and covariance is not None:
+                linear_map = inverse @ jacobian.T @ whiten(np.eye(len(q)))
+                errors = np.sqrt(np.abs(np.diag(linear_map @ sigma @ linear_map.T)))
+                # the goodness of fit is the form's at its GLS least: the
+                # weighted fit's own residuals carry the levels' shared
+                # shift, which the covariance says is no misfit
+                chi2 = _line(h, q, exponent, _whitener(sigma))[1]
+            else:
+                errors = np.sqrt(np.abs(np.diag(inverse)))
     except (ValueError, np.linalg.LinAlgError):
         return None
     dof = len(q) - parameters
@@ -205,11 +222,12 @@ def limit(
     steps: dict | None = None,
     seeds: dict | None = None,
     covariance: dict | None = None,
+    sandwich: bool = False,
 ) -> dict:
     """A quantity's limit N -> infinity from its levels (N, value, sd);
     ``steps`` and ``seeds`` as for ``halvings``; ``covariance`` (N, N') ->
     the covariance of two levels' errors where they are correlated (its
-    diagonal the sd squared), for the fits.
+    diagonal the sd squared), for the fits (``sandwich`` as for ``fit_form``).
 
     Returns
     -------
@@ -249,7 +267,7 @@ def limit(
         return out
     n, q, sd = zip(*use, strict=True)
     matrix = None if covariance is None else [[covariance[a, b] for b in n] for a in n]
-    out["forms"] = {form: fit_form(n, q, sd, form, matrix) for form in FORMS}
+    out["forms"] = {form: fit_form(n, q, sd, form, matrix, sandwich) for form in FORMS}
     if out["halvings"] and not out["halvings"]["converged"]:
         out["status"] = "not converged"
         return out

@@ -149,3 +149,26 @@ def test_a_diagonal_covariance_is_the_independent_fit():
     covariance = {(a, b): (s**2 if a == b else 0.0) for a, s in zip(NS, sd) for b in NS}
     found = limit(list(zip(NS, q, sd)), covariance=covariance)
     assert found["value"] == pytest.approx(limit(list(zip(NS, q, sd)))["value"], rel=1e-6)
+
+
+def test_the_sandwich_fits_by_the_levels_errors_and_counts_their_covariance():
+    # the weighted fit's intercept, its error A C A^T (A the weighted fit's
+    # linear map) and the GLS least chi^2, written here from their formulas
+    n = np.array(NS, float)
+    q = 0.7 + 0.1 * spacing(n) + np.array([0.003, -0.004, 0.01, -0.01, 0.02])
+    var = np.cumsum([0.01**2, 0.004**2, 0.003**2, 0.003**2, 0.002**2])
+    cov = np.minimum.outer(var, var)
+    found = fit_form(n, q, np.sqrt(var), "h", cov, sandwich=True)
+    x = np.stack([np.ones_like(n), spacing(n)], axis=1)
+    weights = np.diag(1 / var)
+    linear_map = np.linalg.inv(x.T @ weights @ x) @ x.T @ weights
+    assert found["limit"] == pytest.approx((linear_map @ q)[0], rel=1e-7)
+    assert found["limit_sd"] == pytest.approx(
+        np.sqrt((linear_map @ cov @ linear_map.T)[0, 0]), rel=1e-6
+    )
+    gls = fit_form(n, q, np.sqrt(var), "h", cov)
+    assert found["chi2"] == pytest.approx(gls["chi2"], rel=1e-9)
+    # shared errors: the sandwich's error is not the independent fit's
+    assert found["limit_sd"] != pytest.approx(
+        fit_form(n, q, np.sqrt(var), "h")["limit_sd"], rel=0.05
+    )

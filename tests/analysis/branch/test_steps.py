@@ -1,5 +1,5 @@
 """The step of mu on the sliding branch between two levels that share their
-seeds (analysis/statistics/branch_steps.py): the levels' own mu, and a step
+seeds (analysis/branch/steps.py): the levels' own mu, and a step
 whose error pairs the seeds."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import csv
 
 import pytest
 
-from analysis.statistics.branch_steps import main, steps
+from analysis.branch.steps import main, steps
 from analysis.theory.tangential import walton_beta
 from tests.synthetic import impact_rows, write_tables
 

@@ -8,7 +8,7 @@ seed bootstrap drawing the same seeds at both (a seed's surface is the same
 at every level, so their errors are correlated and the step's is smaller
 than either's).
 
-    python -m analysis.statistics.branch_steps docs/studies/sliding_branch_1600 \\
+    python -m analysis.branch.steps docs/studies/sliding_branch_1600 \\
         docs/studies/sliding_branch_3200
 
 With --angles, the mean mu_eff over those angles at every level instead:
@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .estimates import lattice_constants
-from .measures import measures
-from .seeds import SeedTable, resample_indices, seed_tables
-from .sliding import constant_p, per_seed_mu_eff, sliding_branch
+from ..statistics.estimates import lattice_constants
+from ..statistics.measures import measures
+from ..statistics.seeds import SeedTable, resample_indices, seed_tables
+from ..statistics.sliding import constant_p, per_seed_mu_eff, sliding_branch
 
 RESAMPLES = 2000
 

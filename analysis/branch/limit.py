@@ -1,0 +1,230 @@
+"""The sliding branch's levels as one chain: each level's friction, the
+covariance its errors share through the seeds, and the limit N -> infinity.
+
+The levels (studies/sliding_branch*.toml) run the same seeds, each with the
+same surface at every resolution, the finest on the first of them only. A
+level's numbers are
+
+- ``mu_eff_mean``: the mean mu_eff over fixed angles (``--angles``; the
+  model-free friction where the disk slides), from the per-angle means;
+- ``mu_eff_<angle>``: mu_eff at the most grazing angle and at 80.5 degrees;
+- ``mu_gls``, ``beta0_gls``: Walton fitted with the seeds' covariance
+  (``walton_gls``, e measured per angle, the measured K);
+- ``mu_paper``, ``beta0_paper``: Walton the paper's way (unweighted means,
+  e 0.8, K 3);
+- ``chi2_gls``, ``chi2_paper``: each fit's chi^2/dof at the level (the
+  GLS fit's with the seeds' covariance, the paper's way's over the means'
+  standard errors), which says whether Walton describes the level at all.
+
+Their errors and covariances come from the delete-one-seed jackknife
+through the whole chain: leaving out one seed at every level that holds it
+(seeds 1 to 8 are at every level, 9 to 16 below the finest), each level's
+numbers and fits are made again; a level's variance is (n - 1) / n times
+the sum of its squared deviations, two levels' covariance the same sum
+over the seeds they share with the geometric mean of their factors. For a
+mean this is exactly the seeds' variance over n at every level, which a
+bootstrap of 8 seeds underestimates by (n - 1) / n; it needs no random
+numbers, so it is the same on every machine. The limit is
+``extrapolation.limit`` with that covariance: each form fitted with the
+levels weighted by their own errors, its errors and chi^2 with the full
+covariance (``extrapolation.fit_form``'s sandwich: the inverse of a
+covariance that 16 seeds estimate is too noisy to weight by), and the
+steps between successive levels from the same covariance.
+
+    python -m analysis.branch.limit docs/studies/sliding_branch \\
+        docs/studies/sliding_branch_1600 ... --angles 85.4 86.3 87
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from ..statistics import extrapolation, walton_gls
+from ..statistics.estimates import PAPER
+from ..statistics.fits import fit_walton, means, reduced_chi2
+from ..statistics.measures import mu_eff
+from ..statistics.seeds import SeedTable
+from ..theory.tangential import walton_beta
+from .steps import level
+
+MID_ANGLE = 80.5  # the paper's most grazing angle
+FIT_QUALITY = "chi2_"  # a level's chi^2/dof of a fit: shown, never extrapolated
+
+
+def level_numbers(table: SeedTable, K: float, chosen: np.ndarray) -> dict[str, float]:
+    """One level's numbers (module docstring) from its table."""
+    cot, e, beta = (table.mean(k) for k in ("cot_gamma", "e", "beta"))
+    each = mu_eff(cot, e, beta, K)
+    out = {"mu_eff_mean": float(np.mean(each[chosen]))}
+    gamma = np.round(table.gamma_deg, 4)
+    out[f"mu_eff_{gamma.max():g}"] = float(each[np.argmax(gamma)])
+    if MID_ANGLE in gamma:
+        out[f"mu_eff_{MID_ANGLE:g}"] = float(each[gamma == MID_ANGLE][0])
+    data = walton_gls.correlated_means(table)
+    nan = {"mu": np.nan, "beta0": np.nan, "chi2": np.nan, "dof": 1}
+    fit = walton_gls.fit(data, K) if data is not None else nan
+    out.update(mu_gls=float(fit["mu"]), beta0_gls=float(fit["beta0"]))
+    per_angle = means(table)
+    paper = fit_walton(per_angle, PAPER["K"], PAPER["e"], weighted=False)
+    out.update(mu_paper=float(paper[0]), beta0_paper=float(paper[1]))
+    # how well each fit describes the level (not carried to a limit)
+    out["chi2_gls"] = fit["chi2"] / fit["dof"]
+    model = walton_beta(per_angle.psi, PAPER["e"], paper[0], paper[1], PAPER["K"])
+    out["chi2_paper"] = reduced_chi2(per_angle, model, 2)
+    return out
+
+
+def jackknife_covariance(
+    seed_sets: list[np.ndarray], left_out: dict[int, np.ndarray]
+) -> np.ndarray:
+    """The levels' covariance (module docstring) from each level's number
+    with each seed left out (``left_out``: seed -> per level, ignored where
+    the level lacks the seed)."""
+    seeds = sorted(left_out)
+    values = np.array([left_out[s] for s in seeds])  # (seeds, levels)
+    holds = np.array([[np.isin(s, level) for level in seed_sets] for s in seeds])
+    n = holds.sum(axis=0)
+    centre = np.array([values[holds[:, j], j].mean() for j in range(len(seed_sets))])
+    deviation = np.where(holds, values - centre, 0.0)
+    factor = np.sqrt((n - 1) / n)
+    return np.outer(factor, factor) * (deviation.T @ deviation)
+
+
+Numbers = Callable[[SeedTable, float, np.ndarray], dict[str, float]]
+
+
+def chain(
+    folders: list[Path],
+    angles: list[float],
+    numbers: Numbers = level_numbers,
+) -> dict:
+    """Each level's ``numbers`` (default ``level_numbers``) with their seed
+    errors, and each number's limit.
+
+    Returns
+    -------
+    dict
+        ``levels`` (N per folder), ``seeds`` (per level), ``values`` and
+        ``sd`` (number -> per level), ``covariance`` (number -> matrix over
+        the levels) and ``limits`` (number -> ``extrapolation.limit``).
+
+    Raises
+    ------
+    ValueError
+        If a level lacks one of ``angles`` or has fewer than two seeds.
+    """
+    loaded = [level(f, angles) for f in folders]
+    tables = [t for t, _, _ in loaded]
+    seed_sets = [t.seeds for t in tables]
+    if any(len(seeds) < 2 for seeds in seed_sets):
+        raise ValueError("a level with fewer than 2 seeds has no error")
+    n = [int(_n_disk(f)) for f in folders]
+    best = [numbers(t, K, c) for t, K, c in loaded]
+    keys = [k for k in best[0] if not k.startswith(FIT_QUALITY)]
+    left_out = {}
+    for seed in np.unique(np.concatenate(seed_sets)):
+        left_out[int(seed)] = [
+            numbers(t.take(np.flatnonzero(t.seeds != seed)), K, c) if seed in t.seeds else None
+            for t, K, c in loaded
+        ]
+    out: dict = {"levels": n, "seeds": [len(s) for s in seed_sets], "folders": folders}
+    out.update(values={}, sd={}, covariance={}, limits={})
+    out["chi2"] = {k: [b[k] for b in best] for k in best[0] if k.startswith(FIT_QUALITY)}
+    for key in keys:
+        values = np.array([b[key] for b in best])
+        cov = jackknife_covariance(
+            seed_sets,
+            {
+                s: np.array([np.nan if r is None else r[key] for r in rows])
+                for s, rows in left_out.items()
+            },
+        )
+        sd = np.sqrt(np.diag(cov))
+        steps = {
+            n[i]: (
+                values[i] - values[i - 1],
+                float(np.sqrt(cov[i, i] + cov[i - 1, i - 1] - 2 * cov[i, i - 1])),
+            )
+            for i in range(1, len(n))
+            if n[i] == 2 * n[i - 1]
+        }
+        covariance = {(n[a], n[b]): cov[a, b] for a in range(len(n)) for b in range(len(n))}
+        out["values"][key], out["sd"][key], out["covariance"][key] = values, sd, cov
+        out["limits"][key] = extrapolation.limit(
+            list(zip(n, values, sd, strict=True)),
+            steps=steps,
+            seeds=dict(zip(n, out["seeds"], strict=True)),
+            covariance=covariance,
+            sandwich=True,  # 16 seeds estimate 5 levels' covariance: fit by their own errors
+        )
+    return out
+
+
+def _n_disk(folder: Path) -> int:
+    """The level's disk points, from its study.json."""
+    study = json.loads((folder / "study.json").read_text())
+    return int(study["n_disk"])
+
+
+def describe(limit: dict) -> str:
+    """A limit in one line: value, errors and band, or why there is none."""
+    if limit["status"] != "limit":
+        halving = limit.get("halvings") or {}
+        if limit["status"] == "not converged":
+            (d, s), (d0, s0) = halving["last"], halving["before"]
+            return (
+                f"not converged: last step {d:+.4f} +- {s:.4f}, "
+                f"the one before {d0:+.4f} +- {s0:.4f}"
+            )
+        tried = {
+            f: f"p {fit['p_value']:.3f}" for f, fit in limit["forms"].items() if fit is not None
+        }
+        return f"{limit['status']} ({', '.join(f'{f} {p}' for f, p in tried.items())})"
+    low, high = limit["band"]
+    forms = ", ".join(f"{f} p {limit['forms'][f]['p_value']:.2f}" for f in limit["described_by"])
+    return (
+        f"{limit['value']:.3f} +- {limit['stat']:.3f} (stat) +- {limit['systematic']:.3f} "
+        f"(form: {low:.3f} to {high:.3f}; {forms})"
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Print each level's friction and Walton's fits with seed errors, and their limits."""
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument(
+        "folders", nargs="+", type=Path, help="docs/studies/<level>/, coarsest first"
+    )
+    parser.add_argument(
+        "--angles",
+        nargs="+",
+        type=float,
+        required=True,
+        help="the angles (degrees) whose mean mu_eff is the friction on the branch",
+    )
+    args = parser.parse_args(argv)
+    try:
+        out = chain(args.folders, args.angles)
+    except (ValueError, OSError) as error:
+        parser.error(str(error))
+    print(
+        f"levels {out['levels']} points, seeds {out['seeds']}; "
+        "errors: each seed left out at every level, through the whole chain"
+    )
+    for key, per_level in out["chi2"].items():
+        print(f"{key}/dof: " + "  ".join(f"{v:.1f}" for v in per_level))
+    for key in out["values"]:
+        cells = "  ".join(
+            f"{v:.3f} +- {s:.3f}" for v, s in zip(out["values"][key], out["sd"][key], strict=True)
+        )
+        print(f"{key}: {cells}")
+        print(f"  limit: {describe(out['limits'][key])}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
