@@ -45,7 +45,8 @@ from pathlib import Path
 import numpy as np
 
 from ..statistics import extrapolation, walton_gls
-from ..statistics.estimates import PAPER
+from ..statistics.claims import NEAR, verdict
+from ..statistics.estimates import CHI2_LIMIT, PAPER
 from ..statistics.fits import fit_walton, means, reduced_chi2
 from ..statistics.measures import mu_eff
 from ..statistics.seeds import SeedTable
@@ -53,6 +54,20 @@ from ..theory.tangential import walton_beta
 from .steps import level
 
 MID_ANGLE = 80.5  # the paper's most grazing angle
+# The paper's facts judged in the limit: number -> (fact, the paper's value,
+# what counts as near, the fit's chi^2 key or None for a model-free number).
+CLAIMS = {
+    "mu_eff_mean": ("mu near 0.18 (the mean mu_eff over the angles)", 0.18, NEAR["mu"], None),
+    "mu_gls": ("Walton's mu near 0.18 (seeds' covariance)", 0.18, NEAR["mu"], "chi2_gls"),
+    "mu_paper": ("Walton's mu near 0.18 (the paper's way)", 0.18, NEAR["mu"], "chi2_paper"),
+    "beta0_gls": ("Walton's beta0 near 0.56 (seeds' covariance)", 0.56, NEAR["beta0"], "chi2_gls"),
+    "beta0_paper": (
+        "Walton's beta0 near 0.56 (the paper's way)",
+        0.56,
+        NEAR["beta0"],
+        "chi2_paper",
+    ),
+}
 FIT_QUALITY = "chi2_"  # a level's chi^2/dof of a fit: shown, never extrapolated
 
 
@@ -171,6 +186,27 @@ def _n_disk(folder: Path) -> int:
     return int(study["n_disk"])
 
 
+def judged(out: dict) -> list[str]:
+    """Each of the paper's facts (CLAIMS) judged on its number's limit by
+    ``claims.verdict``: the error the limit's statistical one and its form's
+    band in quadrature; no limit, no verdict but "undecided". A fit whose
+    chi^2/dof at the finest level is above CHI2_LIMIT does not describe the
+    rows, which the line says: its parameter is the fit's, not the friction's."""
+    lines = []
+    for key, (fact, paper, near, fit) in CLAIMS.items():
+        limit = out["limits"][key]
+        if limit["status"] != "limit":
+            lines.append(f"{fact}: undecided (no limit: {limit['status']})")
+            continue
+        error = float(np.hypot(limit["stat"], limit["systematic"]))
+        line = f"{fact}: {verdict(limit['value'], error, paper, near)} "
+        line += f"({limit['value']:.3f} +- {error:.3f})"
+        if fit and out["chi2"][fit][-1] > CHI2_LIMIT:
+            line += f"; the fit fails, chi2/dof {out['chi2'][fit][-1]:.1f} at the finest level"
+        lines.append(line)
+    return lines
+
+
 def describe(limit: dict) -> str:
     """A limit in one line: value, errors and band, or why there is none."""
     if limit["status"] != "limit":
@@ -223,6 +259,9 @@ def main(argv: list[str] | None = None) -> int:
         )
         print(f"{key}: {cells}")
         print(f"  limit: {describe(out['limits'][key])}")
+    print("the paper's facts in the limit (analysis.statistics.claims's rule):")
+    for line in judged(out):
+        print(f"  {line}")
     return 0
 
 

@@ -103,6 +103,11 @@ def test_the_command_prints_each_level_and_the_limit(tmp_path, capsys):
         "beta0_paper",
     ]
     assert out.count("  limit: ") == len(numbers)
+    # five facts, each judged; the synthetic chain's beta0 (-0.3) misses 0.56
+    facts = out.split("the paper's facts in the limit")[1].splitlines()[1:]
+    assert len(facts) == 5
+    assert facts[0].startswith("  mu near 0.18 (the mean mu_eff over the angles): ")
+    assert "Walton's beta0 near 0.56 (seeds' covariance): misses" in out
 
 
 def test_a_level_missing_an_angle_is_one_line(tmp_path, capsys):
