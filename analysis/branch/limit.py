@@ -12,9 +12,12 @@ level's numbers are
   (``walton_gls``, e measured per angle, the measured K);
 - ``mu_paper``, ``beta0_paper``: Walton the paper's way (unweighted means,
   e 0.8, K 3);
-- ``chi2_gls``, ``chi2_paper``: each fit's chi^2/dof at the level (the
-  GLS fit's with the seeds' covariance, the paper's way's over the means'
-  standard errors), which says whether Walton describes the level at all.
+- ``mu_compliant``: the compliant model of Maw, Barber and Fawcett the
+  measured way (e per angle, the calibration's nu, alpha the measured K,
+  each angle weighted by its mean's standard error);
+- ``chi2_gls``, ``chi2_paper``, ``chi2_compliant``: each fit's chi^2/dof
+  at the level (the GLS fit's with the seeds' covariance, the others' over
+  the means' standard errors), which says whether it describes the level.
 
 Their errors and covariances come from the delete-one-seed jackknife
 through the whole chain: leaving out one seed at every level that holds it
@@ -47,11 +50,10 @@ import numpy as np
 from ..statistics import extrapolation, walton_gls
 from ..statistics.claims import NEAR, verdict
 from ..statistics.estimates import CHI2_LIMIT, PAPER
-from ..statistics.fits import fit_walton, means, reduced_chi2
+from ..statistics.fits import compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
 from ..statistics.measures import mu_eff
-from ..statistics.seeds import SeedTable
 from ..theory.tangential import walton_beta
-from .steps import level
+from .steps import Level, level
 
 MID_ANGLE = 80.5  # the paper's most grazing angle
 # The paper's facts judged in the limit: number -> (fact, the paper's value,
@@ -60,6 +62,7 @@ CLAIMS = {
     "mu_eff_mean": ("mu near 0.18 (the mean mu_eff over the angles)", 0.18, NEAR["mu"], None),
     "mu_gls": ("Walton's mu near 0.18 (seeds' covariance)", 0.18, NEAR["mu"], "chi2_gls"),
     "mu_paper": ("Walton's mu near 0.18 (the paper's way)", 0.18, NEAR["mu"], "chi2_paper"),
+    "mu_compliant": ("the compliant model's mu near 0.18", 0.18, NEAR["mu"], "chi2_compliant"),
     "beta0_gls": ("Walton's beta0 near 0.56 (seeds' covariance)", 0.56, NEAR["beta0"], "chi2_gls"),
     "beta0_paper": (
         "Walton's beta0 near 0.56 (the paper's way)",
@@ -71,11 +74,12 @@ CLAIMS = {
 FIT_QUALITY = "chi2_"  # a level's chi^2/dof of a fit: shown, never extrapolated
 
 
-def level_numbers(table: SeedTable, K: float, chosen: np.ndarray) -> dict[str, float]:
+def level_numbers(x: Level) -> dict[str, float]:
     """One level's numbers (module docstring) from its table."""
+    table, K = x.table, x.K
     cot, e, beta = (table.mean(k) for k in ("cot_gamma", "e", "beta"))
     each = mu_eff(cot, e, beta, K)
-    out = {"mu_eff_mean": float(np.mean(each[chosen]))}
+    out = {"mu_eff_mean": float(np.mean(each[x.chosen]))}
     gamma = np.round(table.gamma_deg, 4)
     out[f"mu_eff_{gamma.max():g}"] = float(each[np.argmax(gamma)])
     if MID_ANGLE in gamma:
@@ -87,10 +91,16 @@ def level_numbers(table: SeedTable, K: float, chosen: np.ndarray) -> dict[str, f
     per_angle = means(table)
     paper = fit_walton(per_angle, PAPER["K"], PAPER["e"], weighted=False)
     out.update(mu_paper=float(paper[0]), beta0_paper=float(paper[1]))
+    # the compliant model (Maw, Barber and Fawcett) the measured way: e per
+    # angle, the calibration's nu, alpha the measured K, weighted by the means' errors
+    compliant = float(fit_compliant(per_angle, x.nu, K)[0])
+    out["mu_compliant"] = compliant
     # how well each fit describes the level (not carried to a limit)
     out["chi2_gls"] = fit["chi2"] / fit["dof"]
     model = walton_beta(per_angle.psi, PAPER["e"], paper[0], paper[1], PAPER["K"])
     out["chi2_paper"] = reduced_chi2(per_angle, model, 2)
+    curve = compliant_curve(per_angle, compliant, x.nu, K)
+    out["chi2_compliant"] = reduced_chi2(per_angle, curve, 1)
     return out
 
 
@@ -110,7 +120,7 @@ def jackknife_covariance(
     return np.outer(factor, factor) * (deviation.T @ deviation)
 
 
-Numbers = Callable[[SeedTable, float, np.ndarray], dict[str, float]]
+Numbers = Callable[[Level], dict[str, float]]
 
 
 def chain(
@@ -134,18 +144,16 @@ def chain(
         If a level lacks one of ``angles`` or has fewer than two seeds.
     """
     loaded = [level(f, angles) for f in folders]
-    tables = [t for t, _, _ in loaded]
-    seed_sets = [t.seeds for t in tables]
+    seed_sets = [x.table.seeds for x in loaded]
     if any(len(seeds) < 2 for seeds in seed_sets):
         raise ValueError("a level with fewer than 2 seeds has no error")
     n = [int(_n_disk(f)) for f in folders]
-    best = [numbers(t, K, c) for t, K, c in loaded]
+    best = [numbers(x) for x in loaded]
     keys = [k for k in best[0] if not k.startswith(FIT_QUALITY)]
     left_out = {}
     for seed in np.unique(np.concatenate(seed_sets)):
         left_out[int(seed)] = [
-            numbers(t.take(np.flatnonzero(t.seeds != seed)), K, c) if seed in t.seeds else None
-            for t, K, c in loaded
+            numbers(x.without(seed)) if seed in x.table.seeds else None for x in loaded
         ]
     out: dict = {"levels": n, "seeds": [len(s) for s in seed_sets], "folders": folders}
     out.update(values={}, sd={}, covariance={}, limits={})

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -33,21 +34,34 @@ from ..statistics.sliding import constant_p, per_seed_mu_eff, sliding_branch
 RESAMPLES = 2000
 
 
-def level(
-    folder: Path, angles: list[float] | None = None, lattice: str = "random"
-) -> tuple[SeedTable, float, np.ndarray]:
-    """A level's table, K and sliding branch (or ``angles``, in degrees,
-    fixed), from its committed impacts.csv."""
+@dataclass(frozen=True)
+class Level:
+    """One level's impacts, its lattice's constants and the angles its
+    friction is read at."""
+
+    table: SeedTable
+    nu: float  # the calibration's Poisson ratio
+    K: float  # 1 + M R^2 / I, measured
+    chosen: np.ndarray  # (angles,) bool: the sliding branch, or the angles asked for
+
+    def without(self, seed: int) -> Level:
+        """The level with one seed left out."""
+        return replace(self, table=self.table.take(np.flatnonzero(self.table.seeds != seed)))
+
+
+def level(folder: Path, angles: list[float] | None = None, lattice: str = "random") -> Level:
+    """A level's table, constants and sliding branch (or ``angles``, in
+    degrees, fixed), from its committed impacts.csv."""
     with (folder / "impacts.csv").open() as handle:
         rows = list(csv.DictReader(handle))
     table = seed_tables(rows)[lattice]
-    K = lattice_constants(rows, lattice)[2]
+    nu, _, K = lattice_constants(rows, lattice)
     if angles is None:
-        return table, K, sliding_branch(table, K)[0]
+        return Level(table, nu, K, sliding_branch(table, K)[0])
     chosen = np.isin(np.round(table.gamma_deg, 4), np.round(angles, 4))
     if chosen.sum() != len(angles):
         raise ValueError(f"{folder.name} does not have every angle of {angles}")
-    return table, K, chosen
+    return Level(table, nu, K, chosen)
 
 
 def steps(
@@ -63,15 +77,17 @@ def steps(
         If the levels do not share their seeds, or lack one of ``angles``.
     """
     levels = [level(f, angles) for f in folders]
-    seeds = levels[0][0].seeds
-    if any(not np.array_equal(t.seeds, seeds) for t, _, _ in levels):
+    seeds = levels[0].table.seeds
+    if any(not np.array_equal(x.table.seeds, seeds) for x in levels):
         raise ValueError("the levels do not run the same seeds")
 
     def mus(index: np.ndarray | None) -> np.ndarray:
         return np.array(
             [
-                measures(t if index is None else t.take(index), K, b)["mu_branch"]
-                for t, K, b in levels
+                measures(x.table if index is None else x.table.take(index), x.K, x.chosen)[
+                    "mu_branch"
+                ]
+                for x in levels
             ]
         )
 
@@ -79,9 +95,9 @@ def steps(
     draws = np.array([mus(index) for index in resample_indices(len(seeds), resamples)])
     out = []
     for i, folder in enumerate(folders):
-        table, K, chosen = levels[i]
+        x = levels[i]
         # whether one constant describes the chosen angles, seed by seed
-        p = constant_p(per_seed_mu_eff(table, K)[:, chosen]) if chosen.sum() > 1 else None
+        p = constant_p(per_seed_mu_eff(x.table, x.K)[:, x.chosen]) if x.chosen.sum() > 1 else None
         row = {"level": folder.name, "mu": best[i], "sd": _sd(draws[:, i]), "p_constant": p}
         if i and np.isfinite(best[i]) and np.isfinite(best[i - 1]):
             row.update(step=best[i] - best[i - 1], step_sd=_sd(draws[:, i] - draws[:, i - 1]))

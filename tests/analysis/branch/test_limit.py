@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from analysis.branch.limit import chain, jackknife_covariance, main
+from analysis.branch.steps import Level
 from analysis.statistics.measures import mu_eff
-from analysis.statistics.seeds import SeedTable
 from analysis.theory.tangential import walton_beta
 from tests.synthetic import GAMMA_DEG, impact_rows, write_tables
 
@@ -40,10 +40,10 @@ def levels(folder, rng_seed: int, offset_sd: float = 0.03, noise_sd: float = 0.0
     return out
 
 
-def branch_mean(table: SeedTable, K: float, chosen: np.ndarray) -> dict[str, float]:
+def branch_mean(x: Level) -> dict[str, float]:
     """The mean mu_eff over the chosen angles alone (the chain's first number)."""
-    means = (table.mean(k) for k in ("cot_gamma", "e", "beta"))
-    return {"mu_eff_mean": float(np.mean(mu_eff(*means, K)[chosen]))}
+    means = (x.table.mean(k) for k in ("cot_gamma", "e", "beta"))
+    return {"mu_eff_mean": float(np.mean(mu_eff(*means, x.K)[x.chosen]))}
 
 
 def test_a_chain_with_a_known_limit_finds_it_within_its_errors(tmp_path):
@@ -96,16 +96,18 @@ def test_the_command_prints_each_level_and_the_limit(tmp_path, capsys):
     assert main([*folders, "--angles", *map(str, ANGLES)]) == 0
     out = capsys.readouterr().out
     assert out.startswith("levels [800, 1600, 3200, 6400, 12800] points, seeds [16, 16, 16, 16, 8]")
-    assert "chi2_gls/dof:" in out and "chi2_paper/dof:" in out
+    for fit in ("gls", "paper", "compliant"):
+        assert f"chi2_{fit}/dof:" in out
     numbers = [line.split(":")[0] for line in out.splitlines() if "+-" in line and line[0] != " "]
     assert numbers == ["mu_eff_mean", f"mu_eff_{max(GAMMA_DEG):g}", "mu_gls", "beta0_gls"] + [
         "mu_paper",
         "beta0_paper",
+        "mu_compliant",
     ]
     assert out.count("  limit: ") == len(numbers)
-    # five facts, each judged; the synthetic chain's beta0 (-0.3) misses 0.56
+    # six facts, each judged; the synthetic chain's beta0 (-0.3) misses 0.56
     facts = out.split("the paper's facts in the limit")[1].splitlines()[1:]
-    assert len(facts) == 5
+    assert len(facts) == 6
     assert facts[0].startswith("  mu near 0.18 (the mean mu_eff over the angles): ")
     assert "Walton's beta0 near 0.56 (seeds' covariance): misses" in out
 
