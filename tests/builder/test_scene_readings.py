@@ -74,7 +74,10 @@ OTHER_WALL_ON_PURPOSE = {
     "sliding_branch_1600": "the same wall as sliding_branch, its next level",
     "sliding_branch_3200": "the same wall as sliding_branch, its third level",
     "sliding_branch_6400": "the same wall as sliding_branch, its fourth level",
+    "sliding_branch_12800": "the same wall as sliding_branch, its fifth level",
     "sliding_branch_slope03": "the same wall as sliding_branch, at the surface slope 0.3",
+    "sliding_branch_slope015": "the same wall as sliding_branch, at the surface slope 0.15",
+    "sliding_branch_triangular": "the same wall as sliding_branch, the triangular disk",
 }
 
 
