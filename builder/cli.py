@@ -17,10 +17,57 @@ from .scene import MODEL_READINGS, NU, SCENE, SCENE_OPTIONS
 
 
 class OneLineParser(argparse.ArgumentParser):
-    """Errors as a single line and exit status 2 (argparse prints the usage too)."""
+    """Errors as a single line and exit status 2 (argparse prints the usage
+    too). A parser given ``common`` options (their dests) shows only those
+    with --help, and every option with --help-all: a command of many options
+    opens on one screen."""
+
+    common: frozenset[str] = frozenset()
+
+    def show_common(self, dests) -> None:
+        """--help shows these options (and the positionals) only; --help-all every one."""
+        self.common = frozenset(dests)
+        self.add_argument(
+            "--help-all", action=_HelpAll, help="show every option, grouped, and exit"
+        )
+
+    def format_help(self, full: bool = False) -> str:
+        if full or not self.common:
+            return super().format_help()
+        hidden = [
+            a
+            for a in self._actions
+            if a.option_strings
+            and a.help != argparse.SUPPRESS
+            and a.dest not in self.common | {"help", "help_all"}
+        ]
+        saved = [a.help for a in hidden]
+        for action in hidden:
+            action.help = argparse.SUPPRESS
+        try:
+            text = super().format_help()
+        finally:
+            for action, help_text in zip(hidden, saved, strict=True):
+                action.help = help_text
+        return (
+            f"{text}\n{len(hidden)} more options (the scene's, the run's): {self.prog} --help-all\n"
+        )
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+class _HelpAll(argparse.Action):
+    """--help-all: the parser's whole help."""
+
+    def __init__(
+        self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None
+    ):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(parser.format_help(full=True), end="")
+        parser.exit()
 
 
 # The readings of the model (docs/model.md section 8), SceneSpec's fields by option.

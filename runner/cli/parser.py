@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import sys
+from pathlib import Path
 
 from builder.cli import (
     OneLineParser,
@@ -38,13 +39,28 @@ from .run_args import (
 from .study import add_study_arguments, run_study_command, study_argument
 from .study_args import EnvironmentFault
 
+# What each command's --help shows (the rest: --help-all), by dest.
+COMMON = {
+    "impact": ("lattice", "seed", "gamma_deg", "vn", "roughness", "n_disk", "wall_width")
+    + ("dt", "nprocs", "dump_every", "out"),
+    "run": ("dt", "integrator", "nprocs", "dump_every", "tmax"),
+    "study": ("samples", "angles", "lattices", "name", "docs", "retry_failed")
+    + ("cluster", "workers"),
+}
+
+
+def program() -> str:
+    """The name the user typed: the console script, or python -m runner."""
+    return "oblique-impact" if Path(sys.argv[0]).name == "oblique-impact" else "python -m runner"
+
 
 def parser() -> OneLineParser:
     """python -m runner's options."""
-    parser = OneLineParser(prog="python -m runner", description="Run oblique impacts with LAMMPS.")
+    parser = OneLineParser(prog=program(), description="Run oblique impacts with LAMMPS.")
     commands = parser.add_subparsers(dest="command", required=True)
 
-    impact = commands.add_parser("impact", help="build a scene, run one impact, print its result")
+    what = "build a scene, run one impact, print its result"
+    impact = commands.add_parser("impact", help=what, description=f"{what[0].upper()}{what[1:]}.")
     add_scene_arguments(impact)
     add_run_arguments(impact)
     impact.add_argument(
@@ -54,7 +70,8 @@ def parser() -> OneLineParser:
         help="run folder (default: runs/<lattice>_s<seed>_g<gamma>)",
     )
 
-    run = commands.add_parser("run", help="run an existing scene folder (python -m builder scene)")
+    what = "run an existing scene folder (python -m builder scene)"
+    run = commands.add_parser("run", help=what, description=f"{what[0].upper()}{what[1:]}.")
     run.add_argument(
         "scene",
         type=InPath("folder", ("scene.data", "scene.lmp", "scene.json")),
@@ -62,13 +79,16 @@ def parser() -> OneLineParser:
     )
     add_run_arguments(run)
 
-    study = commands.add_parser("study", help="the study: sweep, tables, fits, figures (resumable)")
+    what = "the study: sweep, tables, fits, figures (resumable)"
+    study = commands.add_parser("study", help=what, description=f"{what[0].upper()}{what[1:]}.")
     add_study_arguments(study)
 
     tilt = commands.add_parser(
         "tilt", help="the wall's tilt under the disk, from dumps of a grazing study's impacts"
     )
     add_tilt_arguments(tilt)
+    for name, command in (("impact", impact), ("run", run), ("study", study)):
+        command.show_common(COMMON[name])
 
     page = commands.add_parser(
         "page", help="a study's page in docs/ again from its committed tables, without its runs"

@@ -106,7 +106,7 @@ def test_the_default_scene_is_the_chosen_reading():
     held = scene.positions[scene.molecule == WALL_HELD]
     assert np.isclose(np.abs(held[:, 0]), spec.wall_width / 2).all()  # the sides only
     proc = subprocess.run(
-        [sys.executable, "-m", "runner", "impact", "--help"],
+        [sys.executable, "-m", "runner", "impact", "--help-all"],
         cwd=ROOT,
         capture_output=True,
         text=True,

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -57,3 +58,23 @@ def test_help_names_every_command_and_benchmark():
     assert proc.returncode == 0
     assert all(name in proc.stdout for name in COMMANDS)
     assert all(name in proc.stdout for name in benchmarks()) and "common" not in benchmarks()
+
+
+@pytest.mark.parametrize("command", ["impact", "run", "study"])
+def test_help_fits_a_screen_and_help_all_shows_every_option(command):
+    short = run([str(SCRIPT), command, "--help"])
+    full = run([str(SCRIPT), command, "--help-all"])
+    assert short.returncode == full.returncode == 0
+    # named as typed, opening with what the command does, on one screen
+    assert short.stdout.startswith(f"usage: oblique-impact {command} ")
+    assert len(short.stdout.splitlines()) <= 60
+    more = short.stdout.strip().splitlines()[-1]
+    assert more.endswith(f"oblique-impact {command} --help-all")
+    options, shown = (
+        set(re.findall(r"^  (?:-\w, )?(--[\w-]+)", p.stdout, re.M)) for p in (full, short)
+    )
+    # every option is in the full help; the short one says how many it leaves out
+    hidden = options - shown
+    assert hidden and int(more.split()[0]) == len(hidden)
+    assert ("--np" in options) == (command != "study")  # a study's impacts take --ranks
+    assert ("--wall-fixed" in options) == (command != "run")
