@@ -12,6 +12,7 @@ point, the same as its `python -m` form.
 
 from __future__ import annotations
 
+import ast
 import importlib
 import sys
 
@@ -36,6 +37,17 @@ PROG = "oblique-impact"
 def benchmarks() -> list[str]:
     """The benchmarks' names (bench/*.py but the package's own modules)."""
     return sorted(p.stem for p in BENCH.glob("*.py") if p.stem not in ("common", "__init__"))
+
+
+def bench_usage() -> str:
+    """oblique-impact bench's usage: each benchmark with its docstring's first line."""
+    width = max(map(len, benchmarks()))
+    lines = [f"usage: {PROG} bench NAME [options]   ({PROG} bench NAME -h for its options)", ""]
+    for name in benchmarks():
+        doc = ast.get_docstring(ast.parse((BENCH / f"{name}.py").read_text())) or ""
+        paragraph = " ".join(doc.split("\n\n")[0].split())
+        lines.append(f"  {name:<{width}}  {paragraph.split('. ')[0].rstrip('.')}")
+    return "\n".join(lines)
 
 
 def usage() -> str:
@@ -63,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     module, words, _ = COMMANDS[command]
     if command == "bench":
         if not rest or rest[0] in ("-h", "--help"):
-            print(f"usage: {PROG} bench NAME [options]\n\nbenchmarks: {' '.join(benchmarks())}")
+            print(bench_usage())
             return 0 if rest else 2
         if rest[0] not in benchmarks():
             return refuse(f"bench NAME must be one of {', '.join(benchmarks())}, got {rest[0]!r}")

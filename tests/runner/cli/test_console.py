@@ -78,3 +78,12 @@ def test_help_fits_a_screen_and_help_all_shows_every_option(command):
     assert hidden and int(more.split()[0]) == len(hidden)
     assert ("--np" in options) == (command != "study")  # a study's impacts take --ranks
     assert ("--wall-fixed" in options) == (command != "run")
+
+
+def test_bench_lists_each_benchmark_with_what_it_measures():
+    proc = run([str(SCRIPT), "bench"])
+    assert proc.returncode == 2  # no NAME: the list, and a usage error's status
+    rows = {line.split()[0]: line for line in proc.stdout.splitlines()[2:]}
+    assert sorted(rows) == benchmarks()
+    assert all(len(line.split(maxsplit=1)) == 2 for line in rows.values())  # a line each
+    assert "the contact costs" in rows["contact_cost"]
