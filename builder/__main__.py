@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from ground.checks import OutFolder, Range
-from ground.errors import BuildError, InputError, os_error_line
+from ground.errors import BuildError, InputError, clipped, os_error_line
 from ground.gate import environment_paths, make_folder, write_text
 
 from .assembly import build_scene
@@ -89,7 +89,7 @@ def main(argv: list[str] | None = None) -> int:
             write_text(path, table_text(args.a, args.v0, points=args.points))
             print(f"wrote {path}")
     except (InputError, BuildError) as error:
-        print(f"python -m builder: error: {error}", file=sys.stderr)
+        print(f"python -m builder: error: {clipped(str(error))}", file=sys.stderr)
         return 2
     except OSError as error:  # a full disk, a read-only folder
         print(f"python -m builder: error: {os_error_line(error)}", file=sys.stderr)

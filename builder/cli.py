@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import argparse
 
-from ground.errors import InputError
+from ground.errors import InputError, clipped
 
 from .declared import Option
 from .scene import MODEL_READINGS, NU, SCENE, SCENE_OPTIONS
@@ -54,7 +54,7 @@ class OneLineParser(argparse.ArgumentParser):
         )
 
     def error(self, message: str):
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        self.exit(2, f"{self.prog}: error: {clipped(message)}\n")
 
 
 class _HelpAll(argparse.Action):

@@ -11,7 +11,7 @@ from builder.scene import K2_OVER_K1, SEED
 from builder.strips import StripSpec
 from ground import gate
 from ground.checks import OutFolder, Range, require_out_folder
-from ground.errors import InputError
+from ground.errors import InputError, clipped
 from ground.gate import runs_folder
 from ground.paths import DOCS
 
@@ -149,7 +149,7 @@ def main(argv: list[str] | None = None) -> int:
                 f"nonlinearity {r.nonlinearity:.1e}, grip imbalance {r.imbalance:.1e})"
             )
     except InputError as error:
-        print(f"python -m calibration: error: {error}", file=sys.stderr)
+        print(f"python -m calibration: error: {clipped(str(error))}", file=sys.stderr)
         return 2
     return 0
 

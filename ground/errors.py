@@ -3,7 +3,26 @@
 from __future__ import annotations
 
 import errno
+import re
 from collections.abc import Iterable
+
+# An error line quotes at most QUOTE characters of any one value it echoes
+# and is at most LINE long: a 10-million-item list stays one readable line.
+QUOTE = 200
+LINE = 600
+
+
+def clipped(message: str) -> str:
+    """``message`` with every run of more than QUOTE non-blank characters cut
+    to QUOTE, and the whole cut to LINE, each cut saying how long it was."""
+
+    def cut(match: re.Match) -> str:
+        return f"{match.group()[:QUOTE]}... ({len(match.group())} characters)"
+
+    short = re.sub(rf"\S{{{QUOTE + 1},}}", cut, message)
+    if len(short) > LINE:
+        short = f"{short[:LINE]}... ({len(message)} characters in all)"
+    return short
 
 
 class InputError(ValueError):

@@ -20,7 +20,7 @@ from builder.scene import (
     speed_warning,
 )
 from ground.checks import InPath, OutFolder, require_out_folder
-from ground.errors import BuildError, InputError, os_error_line
+from ground.errors import BuildError, InputError, clipped, os_error_line
 from ground.gate import environment_paths, gate
 from ground.launch import LammpsError, mpi_launcher, require_lmp
 
@@ -175,7 +175,10 @@ def main(argv: list[str] | None = None) -> int:
             with stop_on_signals():
                 return run_study_command(args)
     except (InputError, BuildError, LammpsError, EnvironmentFault) as error:
-        print(f"python -m runner: error: {error}{unstable_hint(error, args)}", file=sys.stderr)
+        print(
+            f"python -m runner: error: {clipped(str(error))}{unstable_hint(error, args)}",
+            file=sys.stderr,
+        )
         return 2 if isinstance(error, InputError) else 1
     except Stopped as stop:
         after = {
