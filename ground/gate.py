@@ -174,6 +174,8 @@ def environment_paths(environ: os._Environ | dict | None = None) -> None:
         if not value or (name == "IMPACT_POISSON_CACHE" and value == "off"):
             continue
         gate(value, name)
+        if expanded(value).exists() and not expanded(value).is_dir():  # a folder, or none yet
+            raise InputError(f"{name}: {value} is a file, not a folder")
         if name == "IMPACT_RUNS":  # its path goes into every impact's LAMMPS deck
             path = str(expanded(value).absolute())
             if reason := word_problem(path) or portable_problem(path):

@@ -85,6 +85,15 @@ def test_environment_paths_pass_the_gate(tmp_path):
     assert git_status() == before
 
 
+@pytest.mark.parametrize("name", ["IMPACT_POISSON_CACHE", "IMPACT_RUNS"])
+def test_an_environment_path_that_is_a_file_is_refused(tmp_path, name):
+    a_file = tmp_path / "a_file"
+    a_file.write_text("")
+    done = command("impact", "--out", str(tmp_path / "x"), env={name: str(a_file)})
+    refused(done, f"{name}: {a_file} is a file, not a folder")
+    assert not (tmp_path / "x").exists() and a_file.read_text() == ""
+
+
 def test_run_on_a_folder_of_studies_is_refused(tmp_path):
     scene = ROOT / "studies" / "h44-gate-scene"
     try:
