@@ -132,6 +132,21 @@ def cot_of_degrees(degrees: float) -> float:
     return round(1.0 / math.tan(math.radians(degrees)), 6)
 
 
+# The deepest a study file's tables and lists nest (its deepest, [grid] lists
+# of lists, is 3).
+MAX_NESTING = 8
+
+
+def nesting(value, depth: int = 0) -> int:
+    """How deep ``value``'s lists and tables nest (a plain value: 0)."""
+    if depth > MAX_NESTING:
+        return depth
+    children = (
+        value.values() if isinstance(value, dict) else value if isinstance(value, list) else ()
+    )
+    return max((nesting(child, depth + 1) for child in children), default=depth)
+
+
 def read_study_file(path: Path) -> StudyFile:
     """The study a file describes, its page, axes and readings.
 
@@ -147,12 +162,19 @@ def read_study_file(path: Path) -> StudyFile:
     """
     try:
         # utf-8-sig: a byte-order mark (some editors write one) is read, not refused
-        data = plain_zero(tomllib.loads(path.read_text(encoding="utf-8-sig")))
+        parsed = tomllib.loads(path.read_text(encoding="utf-8-sig"))
     except UnicodeDecodeError as error:
         raise InputError(f"{path}: not a study file (not UTF-8 text: {error.reason} at byte "
                          f"{error.start})") from None  # fmt: skip
     except (OSError, tomllib.TOMLDecodeError) as error:
         raise InputError(f"{path}: not a study file ({error})") from None
+    except RecursionError:  # tomllib recurses into each nested array or table
+        raise InputError(
+            f"{path}: a study file nests at most {MAX_NESTING} deep; this one deeper"
+        ) from None
+    if nesting(parsed) > MAX_NESTING:
+        raise InputError(f"{path}: a study file nests at most {MAX_NESTING} deep; this one deeper")
+    data = plain_zero(parsed)
     if not data:  # never the default study run in its place
         raise InputError(
             f"{path}: an empty study file; give at least one key (python -m runner study "

@@ -79,6 +79,9 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ('[grid]\nlattices = "random"\n', "[grid] lattices must be a list"),
         ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
         ("[grid\n", "not a study file"),
+        # nested past any study's need: a short line, never a RecursionError's 3,000
+        ("a = " + "[" * 12 + "]" * 12 + "\n", "nests at most 8 deep; this one deeper"),
+        ("a = " + "[" * 5000 + "]" * 5000 + "\n", "nests at most 8 deep; this one deeper"),
         ("page = 3\n", "page must be a plain name"),
         ('readings = ["x"]\n', "readings are tabulated on the study's page"),
         ('page = "p"\nreadings = "x"\n', "readings must be a list"),
