@@ -113,6 +113,11 @@ def square_pair(lattices: dict) -> tuple[str, str] | None:
     return (squares[0][1], squares[1][1]) if len(squares) == 2 else None
 
 
+# A lattice is fitted with at least FIT_ANGLES angles of FIT_SEEDS impacts
+# or more (a mean and its error at each): fewer, and its page has no fits.
+FIT_ANGLES, FIT_SEEDS = 3, 2
+
+
 class Study:
     """The fixed inputs of a study's estimates: per lattice its constants,
     the theories to fit, and (after the fit to all the data) the sliding
@@ -122,7 +127,7 @@ class Study:
         self.tables = seed_tables(rows)
         self.lattices = {}
         for lattice, table in self.tables.items():
-            if np.sum(table.counts() > 1) < 3:
+            if np.sum(table.counts() >= FIT_SEEDS) < FIT_ANGLES:
                 continue  # too few angles to fit
             nu, inertia, K = lattice_constants(rows, lattice)
             self.lattices[lattice] = {

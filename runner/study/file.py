@@ -59,6 +59,7 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
+from analysis.statistics.estimates import FIT_ANGLES, FIT_SEEDS
 from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
 from builder.study_names import KINDS, NAMED, READINGS_KINDS
@@ -319,6 +320,14 @@ def read_study_file(path: Path) -> StudyFile:
         raise InputError(f"{path}: {error}") from None
     axes = {key: values for (section, key), values in axes.items()}
     levels = samples_by_level(path, level_samples, axes, kind)
+    if kind == "resolution":  # its page fits every level: refused before any run
+        fewest = min(levels.values(), default=study.samples)
+        if fewest < FIT_SEEDS or study.angles < FIT_ANGLES:
+            raise InputError(
+                f"{path}: a resolution study fits every level, which needs at least "
+                f"{FIT_ANGLES} angles and {FIT_SEEDS} samples at each; got {study.angles} "
+                f"angles, {fewest} samples at its fewest"
+            )
     if sections and study.speeds:
         raise InputError(f"{path}: sections are a results page's; a study of speeds has its own")
     named = {k: v for k, v in named.items() if k not in axes}

@@ -79,6 +79,16 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
         ('[grid]\nlattices = "random"\n', "[grid] lattices must be a list"),
         ("[grid]\ngamma_deg = [45]\ncot_gamma = [1.0]\n", "both gamma_deg and cot_gamma"),
         ("[grid\n", "not a study file"),
+        # a resolution page fits every level: too few angles or seeds refused before any run
+        (
+            'kind = "resolution"\n[grid]\nangles = 2\nsamples = [2, 1]\n'
+            "[scene]\nn_disk = [800, 1600]\n",
+            "needs at least 3 angles and 2 samples at each; got 2 angles, 1 samples",
+        ),
+        (
+            'kind = "resolution"\n[grid]\nangles = 16\nsamples = 1\n[scene]\nn_disk = [800, 1600]\n',
+            "needs at least 3 angles and 2 samples at each; got 16 angles, 1 samples",
+        ),
         # nested past any study's need: a short line, never a RecursionError's 3,000
         ("a = " + "[" * 12 + "]" * 12 + "\n", "nests at most 8 deep; this one deeper"),
         ("a = " + "[" * 5000 + "]" * 5000 + "\n", "nests at most 8 deep; this one deeper"),
