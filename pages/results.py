@@ -47,6 +47,15 @@ def own_section(name: str, study: dict, rows: list[dict], means: list[dict], fit
     )
 
 
+def angle_span(rows: list[dict], failed: list[dict]) -> tuple[float, float]:
+    """The angles the page's impacts ran at, lowest and highest: the
+    finished impacts', or where every impact failed, the failed ones'."""
+    gammas = [float(r["gamma_deg"]) for r in rows] or [float(f["gamma"]) for f in failed]
+    if not gammas:
+        raise ValueError("a results page needs at least one impact, finished or failed")
+    return min(gammas), max(gammas)
+
+
 def results_page(
     study: dict,
     rows: list[dict],
@@ -73,12 +82,11 @@ def results_page(
         else section_text(extra.get(name, ""))
         for name in sections or SECTIONS
     )
-    gammas = [float(r["gamma_deg"]) for r in rows] or [float("nan")]
     page = render(
         "results/page.md.j2",
         info=study,
         rows=rows,
-        span=(min(gammas), max(gammas)),
+        span=angle_span(rows, failed),
         samples_done=samples_done,
         outcome=outcome(failed),
         drift=drifted(rows),

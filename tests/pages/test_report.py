@@ -1,9 +1,12 @@
 """The study's tables: contacts that reached the wall's ends are counted and
 their angles left out of the fits that must not see them; failures grouped."""
 
+import pytest
+
 from analysis.statistics.estimates import clear_angles
 from analysis.statistics.seeds import seed_tables
 from analysis.table import mean_rows
+from pages.results import angle_span
 
 
 def fake_rows(clearances_by_angle: dict[float, list[float]]) -> list[dict]:
@@ -118,3 +121,11 @@ def test_an_unreadable_result_is_named_and_left_out(tmp_path, capsys):
     assert len(warnings) == 3
     for name, line in zip(("truncated", "empty", "list"), warnings):
         assert line.startswith(f"warning: {tmp_path / name / 'result.json'}:")
+
+
+def test_a_study_whose_impacts_all_failed_names_their_angles():
+    failed = [{"gamma": "80.5"}, {"gamma": "45.0"}]
+    assert angle_span([], failed) == (45.0, 80.5)  # never "from nan to nan degrees"
+    assert angle_span([{"gamma_deg": "30.0"}], failed) == (30.0, 30.0)
+    with pytest.raises(ValueError, match="at least one impact"):
+        angle_span([], [])
