@@ -9,7 +9,8 @@ level's numbers are
   model-free friction where the disk slides), from the per-angle means;
 - ``mu_eff_<angle>``: mu_eff at the most grazing angle and at 80.5 degrees;
 - ``mu_gls``, ``beta0_gls``: Walton fitted with the seeds' covariance
-  (``walton_gls``, e measured per angle, the measured K);
+  (``walton_gls``, e measured per angle, the measured K), at a level with
+  at least 8 seeds that have every angle (NaN below: no fit);
 - ``mu_paper``, ``beta0_paper``: Walton the paper's way (unweighted means,
   e 0.8, K 3);
 - ``mu_compliant``: the compliant model of Maw, Barber and Fawcett the
@@ -84,9 +85,12 @@ def level_numbers(x: Level) -> dict[str, float]:
     out[f"mu_eff_{gamma.max():g}"] = float(each[np.argmax(gamma)])
     if MID_ANGLE in gamma:
         out[f"mu_eff_{MID_ANGLE:g}"] = float(each[gamma == MID_ANGLE][0])
+    # the fit with the seeds' covariance from FIT_FROM_SEEDS complete seeds,
+    # counted before any is left out (walton_gls: fewer say little)
     data = walton_gls.correlated_means(table)
     nan = {"mu": np.nan, "beta0": np.nan, "chi2": np.nan, "dof": 1}
-    fit = walton_gls.fit(data, K) if data is not None else nan
+    enough = data is not None and x.complete >= walton_gls.FIT_FROM_SEEDS
+    fit = walton_gls.fit(data, K) if enough else nan
     out.update(mu_gls=float(fit["mu"]), beta0_gls=float(fit["beta0"]))
     per_angle = means(table)
     paper = fit_walton(per_angle, PAPER["K"], PAPER["e"], weighted=False)
@@ -209,8 +213,9 @@ def judged(out: dict) -> list[str]:
         error = float(np.hypot(limit["stat"], limit["systematic"]))
         line = f"{fact}: {verdict(limit['value'], error, paper, near)} "
         line += f"({limit['value']:.3f} +- {error:.3f})"
-        if fit and out["chi2"][fit][-1] > CHI2_LIMIT:
-            line += f"; the fit fails, chi2/dof {out['chi2'][fit][-1]:.1f} at the finest level"
+        fitted = [c for c in out["chi2"].get(fit, []) if np.isfinite(c)]
+        if fitted and fitted[-1] > CHI2_LIMIT:  # the finest level the fit was made at
+            line += f"; the fit fails, chi2/dof {fitted[-1]:.1f} at the finest level fitted"
         lines.append(line)
     return lines
 

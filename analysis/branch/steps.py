@@ -43,6 +43,7 @@ class Level:
     nu: float  # the calibration's Poisson ratio
     K: float  # 1 + M R^2 / I, measured
     chosen: np.ndarray  # (angles,) bool: the sliding branch, or the angles asked for
+    complete: int = 0  # the level's seeds with an impact at every angle (before any left out)
 
     def without(self, seed: int) -> Level:
         """The level with one seed left out."""
@@ -56,12 +57,13 @@ def level(folder: Path, angles: list[float] | None = None, lattice: str = "rando
         rows = list(csv.DictReader(handle))
     table = seed_tables(rows)[lattice]
     nu, _, K = lattice_constants(rows, lattice)
+    complete = int(np.all(np.isfinite(table.values["beta"]), axis=1).sum())
     if angles is None:
-        return Level(table, nu, K, sliding_branch(table, K)[0])
+        return Level(table, nu, K, sliding_branch(table, K)[0], complete)
     chosen = np.isin(np.round(table.gamma_deg, 4), np.round(angles, 4))
     if chosen.sum() != len(angles):
         raise ValueError(f"{folder.name} does not have every angle of {angles}")
-    return Level(table, nu, K, chosen)
+    return Level(table, nu, K, chosen, complete)
 
 
 def steps(

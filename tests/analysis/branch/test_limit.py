@@ -118,3 +118,14 @@ def test_a_level_missing_an_angle_is_one_line(tmp_path, capsys):
         main([*folders, "--angles", "88.5"])
     assert exit_.value.code == 2
     assert "does not have every angle of [88.5]" in capsys.readouterr().err
+
+
+def test_walton_with_the_seeds_covariance_needs_8_complete_seeds(tmp_path):
+    folders = levels(tmp_path, 5)
+    finest = folders[-1] / "impacts.csv"
+    lines = finest.read_text().splitlines(keepends=True)
+    finest.write_text("".join(lines[:-1]))  # seed 8's most grazing impact failed
+    out = chain(folders, ANGLES)
+    # 7 seeds with every angle at the finest level: no fit there, the others kept
+    assert np.isnan(out["values"]["mu_gls"][-1]) and np.isfinite(out["values"]["mu_gls"][:-1]).all()
+    assert np.isfinite(out["values"]["mu_eff_mean"]).all()
