@@ -23,6 +23,10 @@ READINGS_KINDS = (
     "references",
 )
 KINDS = ("results", *READINGS_KINDS)
+# A lattice's page fits it with at least FIT_ANGLES angles of FIT_SEEDS
+# impacts or more (a mean and its error at each: analysis.statistics.estimates);
+# a resolution study fits every level, so its file is held to it before any run.
+FIT_ANGLES, FIT_SEEDS = 3, 2
 # The sections a results page may have, in the order it has them
 # (pages.results.results_page; a study file's `sections` picks some).
 SECTIONS = (

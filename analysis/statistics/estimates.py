@@ -27,6 +27,7 @@ import itertools
 
 import numpy as np
 
+from builder.study_names import FIT_ANGLES, FIT_SEEDS
 from ground.digits import half_range
 
 from ..table import NEAR_SIDE, NEAR_SIDE_SHARE, held
@@ -111,11 +112,6 @@ def square_pair(lattices: dict) -> tuple[str, str] | None:
     """The study's two square lattices, lower nu first, if it has exactly two."""
     squares = sorted((v["nu"], k) for k, v in lattices.items() if k.startswith("square"))
     return (squares[0][1], squares[1][1]) if len(squares) == 2 else None
-
-
-# A lattice is fitted with at least FIT_ANGLES angles of FIT_SEEDS impacts
-# or more (a mean and its error at each): fewer, and its page has no fits.
-FIT_ANGLES, FIT_SEEDS = 3, 2
 
 
 class Study:

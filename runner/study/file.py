@@ -59,10 +59,9 @@ import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
-from analysis.statistics.estimates import FIT_ANGLES, FIT_SEEDS
 from builder.materials import STUDY_LATTICES
 from builder.outputs import page_problem
-from builder.study_names import KINDS, NAMED, READINGS_KINDS
+from builder.study_names import FIT_ANGLES, FIT_SEEDS, KINDS, NAMED, READINGS_KINDS
 from builder.study_names import SECTIONS as PAGE_SECTIONS
 from ground.checks import plain_zero
 from ground.errors import InputError

@@ -86,7 +86,8 @@ def test_a_file_sets_scene_and_run_options(tmp_path):
             "needs at least 3 angles and 2 samples at each; got 2 angles, 1 samples",
         ),
         (
-            'kind = "resolution"\n[grid]\nangles = 16\nsamples = 1\n[scene]\nn_disk = [800, 1600]\n',
+            'kind = "resolution"\n[grid]\nangles = 16\nsamples = 1\n'
+            "[scene]\nn_disk = [800, 1600]\n",
             "needs at least 3 angles and 2 samples at each; got 16 angles, 1 samples",
         ),
         # nested past any study's need: a short line, never a RecursionError's 3,000
