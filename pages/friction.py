@@ -24,8 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from analysis.branch.limit import MID_ANGLE, chain
-from analysis.branch.steps import Level
+from analysis.branch.limit import ANGLES_HELP, MID_ANGLE, chain, n_disk
+from analysis.branch.steps import Level, add_level_arguments
 from analysis.statistics.measures import mu_eff
 from ground.errors import InputError
 from ground.gate import grant, write_figure, write_text
@@ -61,7 +61,7 @@ def by_slope(folders: list[Path], angles: list[float]) -> dict[float, dict]:
         groups.setdefault(rms_slope(folder), []).append(folder)
     out = {}
     for slope, members in sorted(groups.items()):
-        members.sort(key=lambda f: json.loads((f / "study.json").read_text())["n_disk"])
+        members.sort(key=n_disk)
         out[slope] = chain(members, angles, numbers=friction)
     return out
 
@@ -142,14 +142,7 @@ def draw(chains: dict[float, dict], path: Path, angles: list[float]) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Print friction against the rms slope as a table and, with --figure, draw it."""
     parser = argparse.ArgumentParser(description=main.__doc__)
-    parser.add_argument("folders", nargs="+", type=Path, help="docs/studies/sliding_branch*/")
-    parser.add_argument(
-        "--angles",
-        nargs="+",
-        type=float,
-        required=True,
-        help="the angles (degrees) whose mean mu_eff is the friction on the branch",
-    )
+    add_level_arguments(parser, ANGLES_HELP)
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--figure", type=Path, help="the PNG to draw (through the write gate)")
     where.add_argument(

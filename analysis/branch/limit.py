@@ -54,9 +54,10 @@ from ..statistics.estimates import CHI2_LIMIT, PAPER
 from ..statistics.fits import compliant_curve, fit_compliant, fit_walton, means, reduced_chi2
 from ..statistics.measures import mu_eff
 from ..theory.tangential import walton_beta
-from .steps import Level, level
+from .steps import Level, add_level_arguments, level
 
 MID_ANGLE = 80.5  # the paper's most grazing angle
+ANGLES_HELP = "the angles (degrees) whose mean mu_eff is the friction on the branch"
 # The paper's facts judged in the limit: number -> (fact, the paper's value,
 # what counts as near, the fit's chi^2 key or None for a model-free number).
 CLAIMS = {
@@ -151,7 +152,7 @@ def chain(
     seed_sets = [x.table.seeds for x in loaded]
     if any(len(seeds) < 2 for seeds in seed_sets):
         raise ValueError("a level with fewer than 2 seeds has no error")
-    n = [int(_n_disk(f)) for f in folders]
+    n = [n_disk(f) for f in folders]
     best = [numbers(x) for x in loaded]
     keys = [k for k in best[0] if not k.startswith(FIT_QUALITY)]
     left_out = {}
@@ -192,7 +193,7 @@ def chain(
     return out
 
 
-def _n_disk(folder: Path) -> int:
+def n_disk(folder: Path) -> int:
     """The level's disk points, from its study.json."""
     study = json.loads((folder / "study.json").read_text())
     return int(study["n_disk"])
@@ -245,16 +246,7 @@ def describe(limit: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     """Print each level's friction and Walton's fits with seed errors, and their limits."""
     parser = argparse.ArgumentParser(description=main.__doc__)
-    parser.add_argument(
-        "folders", nargs="+", type=Path, help="docs/studies/<level>/, coarsest first"
-    )
-    parser.add_argument(
-        "--angles",
-        nargs="+",
-        type=float,
-        required=True,
-        help="the angles (degrees) whose mean mu_eff is the friction on the branch",
-    )
+    add_level_arguments(parser, ANGLES_HELP)
     args = parser.parse_args(argv)
     try:
         out = chain(args.folders, args.angles)

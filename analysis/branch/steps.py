@@ -113,18 +113,23 @@ def _sd(values: np.ndarray) -> float:
     return float(finite.std(ddof=1)) if finite.size > 1 else float("nan")
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Print mu on the sliding branch at each level and the steps between them."""
-    parser = argparse.ArgumentParser(description=main.__doc__)
+def add_level_arguments(
+    parser: argparse.ArgumentParser, angles_help: str, required: bool = True
+) -> None:
+    """The level folders and --angles, as every command over the levels takes them."""
     parser.add_argument(
         "folders", nargs="+", type=Path, help="docs/studies/<level>/, coarsest first"
     )
-    parser.add_argument(
-        "--angles",
-        nargs="+",
-        type=float,
-        help="the mean mu_eff over these angles (degrees) at every level, not each "
-        "level's own branch",
+    parser.add_argument("--angles", nargs="+", type=float, required=required, help=angles_help)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Print mu on the sliding branch at each level and the steps between them."""
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    add_level_arguments(
+        parser,
+        "the mean mu_eff over these angles (degrees) at every level, not each level's own branch",
+        required=False,
     )
     args = parser.parse_args(argv)
     what = "mean mu_eff over the angles" if args.angles else "mu on the branch"
