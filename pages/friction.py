@@ -28,7 +28,7 @@ from analysis.branch.limit import ANGLES_HELP, MID_ANGLE, chain, n_disk
 from analysis.branch.steps import Level, add_level_arguments
 from analysis.statistics.measures import mu_eff
 from ground.errors import InputError
-from ground.gate import grant, write_figure, write_text
+from ground.gate import grant, make_folder, write_figure, write_text
 from ground.paths import ROOT
 
 NUMBERS = ("mu_eff_mean", f"mu_eff_{MID_ANGLE:g}")
@@ -155,7 +155,7 @@ def main(argv: list[str] | None = None) -> int:
         print(text)
         if args.docs:
             grant(DOCS)
-            DOCS.mkdir(exist_ok=True)
+            make_folder(DOCS, "the friction page")
             draw(chains, DOCS / FIGURE, args.angles)
             write_text(DOCS / PAGE, page(text, args), "the friction page")
             print(f"wrote {DOCS.relative_to(ROOT)}/{PAGE} and {FIGURE}")
